@@ -1,0 +1,66 @@
+// Backend-generic algorithms over Thrust: parallel_for, reductions, sort,
+// gather and scans. Include after backend/cpu.hpp or backend/cuda.cuh.
+#pragma once
+#include <vector>
+
+#include "host/backend/backend.hpp"
+
+namespace mfsd {
+
+template <class B, class F>
+inline void parallel_for(Index begin, Index end, const F& f) {
+  parallel_for(B{}, begin, end, f);
+}
+template <class B, class F>
+inline void parallel_for(Index n, const F& f) {
+  parallel_for(B{}, Index(0), n, f);
+}
+
+// Reduction of f(i) over [begin, end) with the associative, commutative op.
+template <class B, class T, class F, class Op>
+inline T transform_reduce(Index begin, Index end, const F& f, T init, Op op) {
+  if (end <= begin) return init;
+  return thrust::transform_reduce(BackendTraits<B>::policy(), thrust::counting_iterator<Index>(begin),
+                                  thrust::counting_iterator<Index>(end), f, init, op);
+}
+
+template <class B, class K, class V>
+inline void sort_by_key(DeviceVector<B, K>& keys, DeviceVector<B, V>& values) {
+  thrust::sort_by_key(BackendTraits<B>::policy(), keys.begin(), keys.end(), values.begin());
+}
+
+template <class B, class T>
+inline void sequence(DeviceVector<B, T>& v) {
+  thrust::sequence(BackendTraits<B>::policy(), v.begin(), v.end());
+}
+
+// out[k] = in[map[k]]
+template <class B, class T>
+inline void gather(const DeviceVector<B, Index>& map, const DeviceVector<B, T>& in, DeviceVector<B, T>& out) {
+  thrust::gather(BackendTraits<B>::policy(), map.begin(), map.end(), in.begin(), out.begin());
+}
+
+// out[k] = sum_{m<k} in[m]; returns the total.
+template <class B, class TIn, class TOut>
+inline TOut exclusive_scan(const DeviceVector<B, TIn>& in, DeviceVector<B, TOut>& out) {
+  if (in.empty()) return TOut(0);
+  thrust::exclusive_scan(BackendTraits<B>::policy(), in.begin(), in.end(), out.begin(), TOut(0));
+  const TOut last_out = out[in.size() - 1];
+  const TIn last_in = in[in.size() - 1];
+  return last_out + TOut(last_in);
+}
+
+template <class B, class T>
+inline std::vector<T> to_host(const DeviceVector<B, T>& v) {
+  std::vector<T> h(v.size());
+  thrust::copy(v.begin(), v.end(), h.begin());
+  return h;
+}
+
+template <class B, class T>
+inline void from_host(const std::vector<T>& h, DeviceVector<B, T>& v) {
+  v.resize(h.size());
+  thrust::copy(h.begin(), h.end(), v.begin());
+}
+
+}  // namespace mfsd

@@ -1,0 +1,10 @@
+// CUDA device queries of a CPU-only build.
+#include <string>
+
+#include "host/solver/solver.hpp"
+
+namespace mfsd {
+bool cuda_compiled() { return false; }
+int cuda_device_count() { return 0; }
+std::string cuda_device_name() { return "built without CUDA"; }
+}  // namespace mfsd

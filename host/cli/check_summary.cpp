@@ -1,0 +1,53 @@
+#include "host/cli/check_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "host/scene/body_properties.hpp"
+
+namespace mfsd {
+
+std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
+  const Scene& s = doc.scene;
+  std::ostringstream o;
+  o.precision(6);
+  o << "scene '" << s.name << "' from " << doc.source_name << ": valid\n";
+  if (!s.description.empty()) o << "  " << s.description << "\n";
+  o << "  dimension " << s.dimension << ", formulation tlsph, hourglass " << to_string(s.solver.hourglass)
+    << ", h/dp " << s.solver.h_over_dp << ", CFL " << s.solver.cfl << ", end time " << s.solver.end_time
+    << " s, precision " << to_string(s.solver.precision) << "\n";
+  o << "  damping factor " << s.solver.damping_factor << " ("
+    << (s.solver.damping_form == DampingForm::split ? "split" : "isotropic") << "), sound speed "
+    << (s.solver.sound_speed == SoundSpeed::bulk ? "bulk sqrt(K/rho0)" : "p-wave sqrt((K+4G/3)/rho0)")
+    << ", kernel correction in force sums: " << (s.solver.correction_in_force ? "yes" : "no") << "\n";
+  double dt = 1e300;
+  for (size_t b = 0; b < s.bodies.size(); ++b) {
+    const BodySpec& body = s.bodies[b];
+    const BodyProperties p = body_properties(body, s.solver, s.dimension);
+    const long n = P.body_range[b].end - P.body_range[b].begin;
+    double vmax = 0;
+    for (long i = P.body_range[b].begin; i < P.body_range[b].end; ++i) {
+      const auto& v = P.velocity[size_t(i)];
+      vmax = std::max(vmax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    }
+    dt = std::min(dt, s.solver.cfl * p.h / (p.c0 + vmax));
+    o << "  body '" << body.name << "': " << n << " particles (" << P.constrained_count[b] << " clamped), "
+      << to_string(body.material.model) << ", rho0 " << body.material.density << ", E "
+      << body.material.youngs_modulus << ", nu " << body.material.poisson_ratio << ", dp " << body.spacing
+      << ", h " << p.h << ", c0 " << p.c0 << " m/s, max initial speed " << vmax << " m/s\n";
+  }
+  for (size_t k = 0; k < s.probes.size(); ++k) {
+    const auto& x = P.position[size_t(P.probe_particle[k])];
+    o << "  probe '" << s.probes[k].name << "': particle " << P.probe_particle[k] << " at (" << x[0] << ", " << x[1];
+    if (s.dimension == 3) o << ", " << x[2];
+    o << ")\n";
+  }
+  const double steps = s.solver.end_time / dt;
+  o << "  initial time step " << dt << " s, about " << std::llround(steps) << " steps, "
+    << std::llround(steps * double(P.size()) / 1e6) << " million particle-steps; "
+    << std::llround(s.solver.end_time / s.output.interval) << " snapshots\n";
+  return o.str();
+}
+
+}  // namespace mfsd

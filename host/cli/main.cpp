@@ -1,0 +1,148 @@
+// mfsd command-line interface:
+//   mfsd run [SCENE] [-o DIR] [--backend cpu|cuda] [--threads N] [--precision float|double]
+//            [--set path=value]... [--max-steps N] [--quiet]
+//   mfsd check SCENE [--set path=value]...
+//   mfsd --version | --help
+// Exit codes: 0 success, 1 internal error, 2 bad input, 3 numerical failure.
+#include <cstdio>
+#include <cxxopts.hpp>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "host/cli/check_summary.hpp"
+#include "host/driver/run.hpp"
+#include "host/scene/particle_generator.hpp"
+#include "host/scene/scene_error.hpp"
+#include "host/scene/scene_reader.hpp"
+#include "host/version.hpp"
+
+using namespace mfsd;
+
+namespace {
+
+const char* kUsage =
+    "mfsd " MFSD_VERSION " - meshfree solid dynamics (total-Lagrangian SPH with hourglass control)\n"
+    "\n"
+    "usage:\n"
+    "  mfsd run [SCENE.json] [options]   run a scene (without SCENE: the built-in oscillating plate)\n"
+    "  mfsd check SCENE.json [--set ..]  validate a scene and print its resolved summary\n"
+    "  mfsd --version                    version, build and available backends\n"
+    "  mfsd --help                       this text\n"
+    "\n"
+    "run options:\n"
+    "  -o, --output DIR        output folder (default out/<scene name>)\n"
+    "  --backend cpu|cuda      execution backend (default cpu)\n"
+    "  --threads N             CPU threads (default: all)\n"
+    "  --precision float|double  floating-point precision (default: the scene's, else double)\n"
+    "  --set path=value        override a scene value, e.g. --set solver.hourglass=laplacian\n"
+    "                          --set bodies.plate.material.poisson_ratio=0.4 (repeatable)\n"
+    "  --max-steps N           stop after N steps\n"
+    "  -q, --quiet             no progress line and no summary\n"
+    "\n"
+    "outputs: run.json, snapshots.pvd + snapshots/*.vtu (ParaView), probes.csv, energies.csv, timing.json\n"
+    "exit codes: 0 success, 2 bad input, 3 numerical failure (NaN/Inf or particle out of bounds)\n";
+
+std::string join_args(int argc, char** argv) {
+  std::string s;
+  for (int k = 0; k < argc; ++k) s += (k ? " " : "") + std::string(argv[k]);
+  return s;
+}
+
+void print_version() {
+  std::printf("mfsd %s (commit %s)\n", MFSD_VERSION, MFSD_GIT_COMMIT);
+  std::printf("backends: cpu (OpenMP)%s\n", cuda_compiled() ? ", cuda" : "");
+  if (cuda_compiled()) std::printf("cuda devices: %d (%s)\n", cuda_device_count(), cuda_device_name().c_str());
+  std::printf("precisions: float, double; dimensions: 2, 3\n");
+}
+
+int command_check(int argc, char** argv) {
+  cxxopts::Options opts("mfsd check", "validate a scene");
+  opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())(
+      "scene", "scene file", cxxopts::value<std::string>());
+  opts.parse_positional({"scene"});
+  auto r = opts.parse(argc, argv);
+  if (!r.count("scene")) throw UsageError("mfsd check: a scene file is required (mfsd check SCENE.json)");
+  if (r.unmatched().size()) throw UsageError("mfsd check: unexpected argument '" + r.unmatched()[0] + "'");
+  std::vector<std::string> sets;
+  if (r.count("set")) sets = r["set"].as<std::vector<std::string>>();
+  const SceneDocument doc = load_scene_file(r["scene"].as<std::string>(), sets);
+  const InitialParticles particles = generate_particles(doc.scene);
+  std::cout << check_summary(doc, particles);
+  return 0;
+}
+
+int command_run(int argc, char** argv, const std::string& command_line) {
+  cxxopts::Options opts("mfsd run", "run a scene");
+  opts.add_options()("o,output", "", cxxopts::value<std::string>())("backend", "", cxxopts::value<std::string>())(
+      "threads", "", cxxopts::value<int>())("precision", "", cxxopts::value<std::string>())(
+      "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
+      "q,quiet", "")("scene", "", cxxopts::value<std::string>());
+  opts.parse_positional({"scene"});
+  auto r = opts.parse(argc, argv);
+  if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");
+  std::vector<std::string> sets;
+  if (r.count("set")) sets = r["set"].as<std::vector<std::string>>();
+  const SceneDocument doc = r.count("scene") ? load_scene_file(r["scene"].as<std::string>(), sets)
+                                             : load_scene_text(default_scene_text(), "<default scene>", sets);
+  RunOptions o;
+  o.command_line = command_line;
+  o.solver.precision = doc.scene.solver.precision;
+  if (r.count("output")) o.output_dir = r["output"].as<std::string>();
+  if (r.count("backend")) o.solver.backend = r["backend"].as<std::string>();
+  if (o.solver.backend != "cpu" && o.solver.backend != "cuda")
+    throw UsageError("--backend " + o.solver.backend + ": expected cpu or cuda");
+  if (r.count("threads")) {
+    o.solver.threads = r["threads"].as<int>();
+    if (o.solver.threads < 1) throw UsageError("--threads " + std::to_string(o.solver.threads) + ": expected N >= 1");
+  }
+  if (r.count("precision")) {
+    const std::string p = r["precision"].as<std::string>();
+    if (p != "float" && p != "double") throw UsageError("--precision " + p + ": expected float or double");
+    o.solver.precision = p == "float" ? Precision::single_precision : Precision::double_precision;
+    o.precision_given = true;
+  }
+  if (r.count("max-steps")) {
+    o.max_steps = r["max-steps"].as<long>();
+    if (o.max_steps < 1) throw UsageError("--max-steps: expected N >= 1");
+  }
+  o.quiet = r.count("quiet") > 0;
+  const RunResult result = run_scene(doc, o);
+  return result.exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string command_line = join_args(argc, argv);
+  try {
+    if (argc < 2) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    const std::string cmd = argv[1];
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (cmd == "--version" || cmd == "version") {
+      print_version();
+      return 0;
+    }
+    if (cmd == "check") return command_check(argc - 1, argv + 1);
+    if (cmd == "run") return command_run(argc - 1, argv + 1, command_line);
+    throw UsageError("unknown command '" + cmd + "' (expected run, check, --version or --help)");
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "mfsd: error: %s\n", e.what());
+    return 2;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "mfsd: error: %s\nrun 'mfsd --help' for usage\n", e.what());
+    return 2;
+  } catch (const cxxopts::exceptions::exception& e) {
+    std::fprintf(stderr, "mfsd: error: %s\nrun 'mfsd --help' for usage\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mfsd: internal error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,197 @@
+#include "host/driver/run.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "host/driver/progress.hpp"
+#include "host/driver/run_report.hpp"
+#include "host/output/csv_writer.hpp"
+#include "host/output/pvd_index.hpp"
+#include "host/output/vtu_writer.hpp"
+#include "host/scene/particle_generator.hpp"
+#include "host/scene/scene_error.hpp"
+#include "host/solver/numerical_failure.hpp"
+
+namespace mfsd {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<std::string> probe_columns(const Scene& scene) {
+  std::vector<std::string> cols{"time"};
+  const char* axes[3] = {"x", "y", "z"};
+  for (auto& p : scene.probes)
+    for (auto& f : p.fields) {
+      if (f == "von_mises" || f == "J") {
+        cols.push_back(p.name + "." + f);
+      } else {
+        for (int a = 0; a < scene.dimension; ++a) cols.push_back(p.name + "." + f + "." + axes[a]);
+      }
+    }
+  return cols;
+}
+
+std::vector<double> probe_row(const Scene& scene, double time, const std::vector<ProbeSample>& s) {
+  std::vector<double> row{time};
+  for (size_t k = 0; k < scene.probes.size(); ++k)
+    for (auto& f : scene.probes[k].fields) {
+      if (f == "von_mises") {
+        row.push_back(s[k].von_mises);
+      } else if (f == "J") {
+        row.push_back(s[k].jacobian);
+      } else {
+        const Point3& v = f == "position" ? s[k].position : (f == "displacement" ? s[k].displacement : s[k].velocity);
+        for (int a = 0; a < scene.dimension; ++a) row.push_back(v[a]);
+      }
+    }
+  return row;
+}
+
+// Outputs of a previous run in the same folder would mix with this one's.
+void remove_previous_outputs(const std::string& dir) {
+  for (const char* f : {"run.json", "timing.json", "probes.csv", "energies.csv", "snapshots.pvd"})
+    fs::remove(fs::path(dir) / f);
+  fs::remove_all(fs::path(dir) / "snapshots");
+}
+
+}  // namespace
+
+void prepare_output_dir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw SceneError("output folder '" + dir + "'", "", "a folder that can be created (" + ec.message() + ")");
+  if (access(dir.c_str(), W_OK) != 0)
+    throw SceneError("output folder '" + dir + "'", "", "a writable folder (permission denied)");
+}
+
+RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
+  const Scene& scene = doc.scene;
+  // Everything that can be wrong with the input is found before the folder is made.
+  const InitialParticles particles = generate_particles(scene);
+  std::unique_ptr<Solver> solver = make_solver(scene, particles, options.solver);
+
+  const std::string dir = options.output_dir.empty() ? "out/" + scene.name : options.output_dir;
+  const bool existed = fs::exists(dir);
+  prepare_output_dir(dir);
+  if (existed) remove_previous_outputs(dir);
+  fs::create_directories(fs::path(dir) / "snapshots");
+
+  RunStatus status;
+  status.state = "running";
+  const auto t_start = Clock::now();
+  solver->initialize();
+  status.setup_seconds = seconds_since(t_start);
+  const SetupReport setup = solver->setup_report();
+  write_run_json(dir, doc, options, setup, status);
+
+  if (!options.quiet) {
+    std::printf("mfsd: scene '%s' (%dD), %ld particles, %.1f neighbours/particle, backend %s, %s precision\n",
+                scene.name.c_str(), scene.dimension, setup.particles, setup.mean_neighbors,
+                options.solver.backend.c_str(), to_string(options.solver.precision));
+    if (setup.regularized_corrections > 0)
+      std::printf("mfsd: %ld kernel-correction matrices were near-singular and regularized\n",
+                  setup.regularized_corrections);
+    std::printf("mfsd: output in %s/\n", dir.c_str());
+    std::fflush(stdout);
+  }
+
+  CsvWriter probes_csv(dir + "/probes.csv", probe_columns(scene));
+  CsvWriter energies_csv(dir + "/energies.csv",
+                         {"time", "kinetic", "strain", "total", "hourglass_max", "hourglass_mean"});
+  PvdIndex pvd(dir + "/snapshots.pvd");
+  const bool single = options.solver.precision == Precision::single_precision;
+  int snapshot_count = 0;
+  double output_seconds = 0;
+
+  auto write_outputs = [&](bool snapshot) {
+    const auto t0 = Clock::now();
+    if (!scene.probes.empty()) probes_csv.row(probe_row(scene, solver->time(), solver->probes()));
+    if (snapshot) {
+      const EnergySample e = solver->energies();
+      energies_csv.row({solver->time(), e.kinetic, e.strain, e.kinetic + e.strain, e.hourglass_max, e.hourglass_mean});
+      if (scene.output.vtu) {
+        char name[64];
+        std::snprintf(name, sizeof name, "snapshots/%s_%05d.vtu", scene.name.c_str(), snapshot_count);
+        write_vtu(dir + "/" + name, solver->snapshot(), single);
+        pvd.add(solver->time(), name);
+      }
+      ++snapshot_count;
+    }
+    output_seconds += seconds_since(t0);
+  };
+
+  const double end_time = scene.solver.end_time;
+  const double eps = 1e-12 * end_time;
+  double next_output = scene.output.interval;
+  double next_probe = scene.output.probe_interval;
+  write_outputs(true);
+
+  Progress progress(end_time, !options.quiet);
+  RunResult result;
+  result.output_dir = dir;
+  double step_seconds = 0;
+  const auto t_loop = Clock::now();
+  try {
+    while (solver->time() < end_time - eps && (options.max_steps <= 0 || solver->steps() < options.max_steps)) {
+      solver->limit_next_dt(end_time - solver->time());
+      const auto t0 = Clock::now();
+      solver->step();
+      step_seconds += seconds_since(t0);
+      const double t = solver->time();
+      const bool last = t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps);
+      const bool snap = t >= next_output - eps || last;
+      if (snap || t >= next_probe - eps) write_outputs(snap);
+      while (next_probe <= t + eps) next_probe += scene.output.probe_interval;
+      while (next_output <= t + eps) next_output += scene.output.interval;
+      progress.update(t, solver->steps());
+    }
+    status.state = "completed";
+  } catch (const NumericalFailure& f) {
+    progress.finish();
+    status.state = "failed";
+    status.message = f.what();
+    result.exit_code = 3;
+    result.message = f.what();
+    std::fprintf(stderr, "mfsd: run stopped: %s\nmfsd: the last good snapshot is kept in %s/snapshots\n", f.what(),
+                 dir.c_str());
+  }
+  progress.finish();
+  status.steps = solver->steps();
+  status.simulated_time = solver->time();
+  status.step_seconds = step_seconds;
+  status.output_seconds = output_seconds;
+  status.wall_seconds = seconds_since(t_loop);
+  write_timing_json(dir, setup, solver->timers(), options, status);
+  write_run_json(dir, doc, options, setup, status);
+
+  result.steps = status.steps;
+  result.time = status.simulated_time;
+  if (!options.quiet) {
+    char wall[32];
+    format_duration(status.wall_seconds, wall, sizeof wall);
+    const double ps = double(setup.particles) * double(status.steps);
+    std::printf("mfsd: %s: %ld particles, %ld steps to t = %.6g s in %s (%.3g particle-steps/s; set-up %.2fs, output %.2fs)\n",
+                status.state.c_str(), setup.particles, status.steps, status.simulated_time, wall,
+                step_seconds > 0 ? ps / step_seconds : 0.0, status.setup_seconds, output_seconds);
+    const double total = solver->timers().total();
+    std::printf("mfsd: stage               share   us/step   ns/particle-step\n");
+    for (auto& st : solver->timers().stages())
+      std::printf("mfsd:   %-18s %5.1f %%  %8.1f  %8.2f\n", st.first.c_str(), total > 0 ? 100 * st.second / total : 0,
+                  status.steps ? 1e6 * st.second / status.steps : 0.0, ps > 0 ? 1e9 * st.second / ps : 0.0);
+  }
+  return result;
+}
+
+}  // namespace mfsd

@@ -1,0 +1,36 @@
+// Runs a scene: set-up, the time loop with outputs (VTU + PVD, probes.csv,
+// energies.csv), progress, run.json and timing.json, and the summary.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "host/scene/scene_reader.hpp"
+#include "host/solver/solver.hpp"
+
+namespace mfsd {
+
+struct RunOptions {
+  std::string output_dir;  // default out/<scene name>
+  SolverOptions solver;
+  bool precision_given = false;  // --precision overrides the scene's solver.precision
+  long max_steps = 0;            // 0 = until end_time
+  bool quiet = false;            // no progress and no summary
+  std::string command_line;
+};
+
+struct RunResult {
+  int exit_code = 0;  // 0 ok, 3 numerical failure
+  long steps = 0;
+  double time = 0;
+  std::string output_dir;
+  std::string message;
+};
+
+// Input problems (SceneError, unavailable backend, unwritable folder) are
+// thrown before the output folder is created.
+RunResult run_scene(const SceneDocument& doc, const RunOptions& options);
+
+// Creates the folder (and parents) and checks it is writable; throws SceneError.
+void prepare_output_dir(const std::string& dir);
+
+}  // namespace mfsd

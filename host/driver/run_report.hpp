@@ -1,0 +1,25 @@
+// run.json (provenance: resolved scene, version, backend, counts, status) and
+// timing.json (per-stage and per-step times, particle-steps/s).
+#pragma once
+#include <string>
+
+#include "host/driver/run.hpp"
+#include "host/scene/json_node.hpp"
+
+namespace mfsd {
+
+struct RunStatus {
+  std::string state;  // running | completed | failed
+  long steps = 0;
+  double simulated_time = 0;
+  std::string message;
+  double setup_seconds = 0, step_seconds = 0, output_seconds = 0, wall_seconds = 0;
+};
+
+Json machine_description();
+void write_run_json(const std::string& dir, const SceneDocument& doc, const RunOptions& options,
+                    const SetupReport& setup, const RunStatus& status);
+void write_timing_json(const std::string& dir, const SetupReport& setup, const StageTimers& timers,
+                       const RunOptions& options, const RunStatus& status);
+
+}  // namespace mfsd

@@ -1,0 +1,119 @@
+// Total-Lagrangian reference neighbour list: one cell-list search in the
+// reference configuration, with the sort-based reordering of every particle
+// field, then a CSR list (count, scan, fill) with the per-pair reference data
+// (design.md, "Neighbour search"). Built once per run.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "host/particles/field_names.hpp"
+#include "host/particles/particle_set.hpp"
+#include "kernels/neighbors/cell_list.hpp"
+#include "kernels/tlsph/reference_pair_fill.hpp"
+
+namespace mfsd {
+
+template <class B, int D, class Real>
+struct ReferenceNeighborList {
+  DeviceVector<B, PairIndex> offsets;
+  DeviceVector<B, Index> neighbor;
+  DeviceVector<B, Vec<D, Real>> e0;
+  DeviceVector<B, Real> dwv, inv_r0, beta;
+
+  PairIndex pairs() const { return PairIndex(neighbor.size()); }
+
+  ReferencePairs<D, Real> view() const {
+    return ReferencePairs<D, Real>{raw(offsets), raw(neighbor), raw(e0), raw(dwv), raw(inv_r0),
+                                   beta.empty() ? nullptr : raw(beta)};
+  }
+};
+
+struct BodySearch {
+  BodyRange range;
+  double smoothing_length;  // support radius = 2 h
+};
+
+// Builds the grid over [lo, hi] with cells of edge `cell_size` for `bodies` bodies.
+template <int D>
+CellGrid<D> make_cell_grid(const double* lo, const double* hi, double cell_size, int bodies) {
+  CellGrid<D> g;
+  g.inv_cell_size = 1.0 / cell_size;
+  std::int64_t cells = 1;
+  for (int a = 0; a < D; ++a) {
+    g.origin[a] = lo[a] - 1e-9 * cell_size;
+    g.dims[a] = std::max(1, int(std::floor((hi[a] - g.origin[a]) / cell_size)) + 1);
+    cells *= g.dims[a];
+  }
+  g.cells_per_body = cells;
+  (void)bodies;
+  return g;
+}
+
+// Sorts particles by (body, cell) and, when `reorder`, permutes every field of
+// the set accordingly; then builds the CSR list. Reads the set-up field
+// reference_position_double, the body ids and the volumes.
+template <class B, int D, class Real>
+ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& particles,
+                                                                 const std::vector<BodySearch>& bodies,
+                                                                 bool reorder, bool with_beta) {
+  const Index n = particles.size();
+  // Grid over the reference bounding box, cell edge = the largest support radius.
+  const auto host_x = to_host<B>(particles.template buffer<Vec<D, double>>(field::reference_position_double));
+  double lo[D], hi[D];
+  for (int a = 0; a < D; ++a) {
+    lo[a] = hi[a] = n ? host_x[0].v[a] : 0.0;
+    for (const auto& x : host_x) lo[a] = std::min(lo[a], x.v[a]), hi[a] = std::max(hi[a], x.v[a]);
+  }
+  double radius = 0;
+  for (const auto& b : bodies) radius = std::max(radius, 2.0 * b.smoothing_length);
+  const CellGrid<D> grid = make_cell_grid<D>(lo, hi, radius, int(bodies.size()));
+
+  DeviceVector<B, std::int64_t> keys(static_cast<size_t>(n));
+  DeviceVector<B, Index> order(static_cast<size_t>(n));
+  sequence<B, Index>(order);
+  parallel_for<B>(n, CellKeyFunctor<D>{grid, particles.template get<Vec<D, double>>(field::reference_position_double),
+                                       particles.template get<int>(field::body), raw(keys)});
+  sort_by_key<B, std::int64_t, Index>(keys, order);
+  if (reorder) {
+    particles.permute(order);
+    sequence<B, Index>(order);
+  }
+  DeviceVector<B, Index> start(size_t(grid.cells_per_body) * bodies.size(), 0);
+  DeviceVector<B, Index> end(size_t(grid.cells_per_body) * bodies.size(), 0);
+  parallel_for<B>(n, CellRangeFunctor{raw(keys), n, raw(start), raw(end)});
+
+  CellNeighborhood<D> hood{grid,       particles.template get<Vec<D, double>>(field::reference_position_double),
+                           particles.template get<int>(field::body),
+                           raw(start), raw(end), reorder ? nullptr : raw(order), 0.0};
+  DeviceVector<B, Index> count(size_t(n), 0);
+  for (const auto& b : bodies) {
+    hood.radius2 = std::pow(2.0 * b.smoothing_length, 2);
+    parallel_for<B>(b.range.begin, b.range.end, NeighborCountFunctor<D>{hood, raw(count)});
+  }
+  ReferenceNeighborList<B, D, Real> list;
+  list.offsets.resize(size_t(n) + 1);
+  const PairIndex total = exclusive_scan<B, Index, PairIndex>(count, list.offsets);
+  list.offsets[size_t(n)] = total;
+  list.neighbor.resize(size_t(total));
+  list.e0.resize(size_t(total));
+  list.dwv.resize(size_t(total));
+  list.inv_r0.resize(size_t(total));
+  if (with_beta) list.beta.resize(size_t(total));
+  for (const auto& b : bodies) {
+    hood.radius2 = std::pow(2.0 * b.smoothing_length, 2);
+    ReferencePairFillFunctor<D, Real> fill{hood,
+                                           WendlandC2<D, double>::make(b.smoothing_length),
+                                           particles.template get<Real>(field::volume),
+                                           raw(list.offsets),
+                                           raw(list.neighbor),
+                                           raw(list.e0),
+                                           raw(list.dwv),
+                                           raw(list.inv_r0),
+                                           with_beta ? raw(list.beta) : nullptr};
+    parallel_for<B>(b.range.begin, b.range.end, fill);
+  }
+  return list;
+}
+
+}  // namespace mfsd

@@ -1,0 +1,14 @@
+// VTK XML unstructured-grid snapshot (.vtu) with raw appended binary data:
+// one vertex cell per particle, point data id, body, constrained,
+// displacement, velocity, von_mises, J and hourglass. Opens in ParaView.
+#pragma once
+#include <string>
+
+#include "host/solver/solver.hpp"
+
+namespace mfsd {
+
+// `single` writes floating-point arrays as Float32 (float runs), else Float64.
+void write_vtu(const std::string& path, const Snapshot& s, bool single);
+
+}  // namespace mfsd

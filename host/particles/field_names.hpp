@@ -1,0 +1,24 @@
+// Names of particle fields, so stages agree on them without string typos.
+#pragma once
+
+namespace mfsd::field {
+inline constexpr const char* id = "id";
+inline constexpr const char* body = "body";
+inline constexpr const char* reference_position = "reference_position";
+inline constexpr const char* reference_position_double = "reference_position_double";  // set-up only
+inline constexpr const char* displacement = "displacement";
+inline constexpr const char* velocity = "velocity";
+inline constexpr const char* acceleration = "acceleration";
+inline constexpr const char* volume = "volume";
+inline constexpr const char* constrained = "constrained";
+inline constexpr const char* deformation_gradient = "deformation_gradient";
+inline constexpr const char* deformation_rate = "deformation_rate";
+inline constexpr const char* correction_matrix = "correction_matrix";
+inline constexpr const char* force_stress = "force_stress";
+inline constexpr const char* shear_coefficient = "shear_coefficient";
+inline constexpr const char* shear_stress = "shear_stress";
+inline constexpr const char* inverse_deformation_gradient = "inverse_deformation_gradient";
+inline constexpr const char* hourglass_indicator = "hourglass_indicator";
+inline constexpr const char* von_mises = "von_mises";
+inline constexpr const char* jacobian = "jacobian";
+}  // namespace mfsd::field

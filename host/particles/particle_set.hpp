@@ -1,0 +1,116 @@
+// Structure-of-arrays particle storage with a registry of fields that stages
+// declare (design.md, "Particle storage"). One buffer per field in the
+// backend's memory space; vector and tensor fields are arrays of Vec/Mat.
+// Bodies are index ranges [begin, end) of one set.
+#pragma once
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <typeinfo>
+#include <vector>
+
+#include "host/backend/algorithms.hpp"
+
+namespace mfsd {
+
+struct BodyRange {
+  Index begin = 0;
+  Index end = 0;
+  Index size() const { return end - begin; }
+};
+
+template <class B>
+class ParticleSet {
+ public:
+  explicit ParticleSet(Index n = 0) : n_(n) {}
+
+  Index size() const { return n_; }
+
+  // Registers a field of n elements, zero-initialized. Registering the same
+  // name twice with the same type returns the existing buffer.
+  template <class T>
+  T* add(const std::string& name) {
+    auto it = fields_.find(name);
+    if (it != fields_.end()) return typed<T>(name, *it->second).data_ptr();
+    auto f = std::make_unique<Field<T>>();
+    f->data.resize(size_t(n_));
+    T* p = f->data_ptr();
+    fields_.emplace(name, std::move(f));
+    return p;
+  }
+
+  template <class T>
+  T* get(const std::string& name) {
+    return typed<T>(name, find(name)).data_ptr();
+  }
+  template <class T>
+  const T* get(const std::string& name) const {
+    return typed<T>(name, find(name)).data_ptr();
+  }
+  template <class T>
+  DeviceVector<B, T>& buffer(const std::string& name) {
+    return typed<T>(name, find(name)).data;
+  }
+
+  bool has(const std::string& name) const { return fields_.count(name) != 0; }
+
+  // Frees a field that is no longer needed (e.g. set-up data).
+  void remove(const std::string& name) { fields_.erase(name); }
+
+  std::vector<std::string> field_names() const {
+    std::vector<std::string> r;
+    for (auto& kv : fields_) r.push_back(kv.first);
+    return r;
+  }
+
+  // Bytes held by all fields (for the memory-per-particle report).
+  size_t bytes() const {
+    size_t s = 0;
+    for (auto& kv : fields_) s += kv.second->bytes();
+    return s;
+  }
+
+  // Reorders every field: new[k] = old[perm[k]]. Ids travel with the data, so
+  // outputs still name particles by their original index.
+  void permute(const DeviceVector<B, Index>& perm) {
+    if (Index(perm.size()) != n_) throw std::logic_error("ParticleSet::permute: size mismatch");
+    for (auto& kv : fields_) kv.second->permute(perm);
+  }
+
+ private:
+  struct FieldBase {
+    virtual ~FieldBase() = default;
+    virtual void permute(const DeviceVector<B, Index>& perm) = 0;
+    virtual size_t bytes() const = 0;
+    virtual const std::type_info& type() const = 0;
+  };
+  template <class T>
+  struct Field final : FieldBase {
+    DeviceVector<B, T> data;
+    T* data_ptr() { return raw(data); }
+    void permute(const DeviceVector<B, Index>& perm) override {
+      DeviceVector<B, T> tmp(data.size());
+      gather<B, T>(perm, data, tmp);
+      data.swap(tmp);
+    }
+    size_t bytes() const override { return data.size() * sizeof(T); }
+    const std::type_info& type() const override { return typeid(T); }
+  };
+
+  FieldBase& find(const std::string& name) const {
+    auto it = fields_.find(name);
+    if (it == fields_.end()) throw std::logic_error("particle field '" + name + "' is not registered");
+    return *it->second;
+  }
+  template <class T>
+  static Field<T>& typed(const std::string& name, FieldBase& f) {
+    if (f.type() != typeid(T)) throw std::logic_error("particle field '" + name + "' has another type");
+    return static_cast<Field<T>&>(f);
+  }
+
+  Index n_;
+  std::map<std::string, std::unique_ptr<FieldBase>> fields_;
+};
+
+}  // namespace mfsd

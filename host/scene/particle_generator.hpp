@@ -1,0 +1,37 @@
+// Fills each body's geometry with a lattice of particles (spacing dp,
+// particle centres at min + (k + 1/2) dp of the body's bounding box), marks
+// clamped particles, evaluates the initial velocity expressions and locates
+// probes. Pure host code; errors are SceneErrors naming the JSON path.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "host/scene/scene.hpp"
+
+namespace mfsd {
+
+struct InitialParticles {
+  int dimension = 2;
+  std::vector<Point3> position;  // reference positions
+  std::vector<Point3> velocity;
+  std::vector<int> body;
+  std::vector<unsigned char> constrained;
+  std::vector<double> volume;
+  struct Range {
+    long begin, end;
+  };
+  std::vector<Range> body_range;  // particles of body b are [begin, end)
+  std::vector<long> probe_particle;  // particle id of each probe
+  std::vector<long> constrained_count;  // per body
+
+  size_t size() const { return position.size(); }
+};
+
+InitialParticles generate_particles(const Scene& scene);
+
+// Constants available to a body's expressions: the scene's constants, then
+// rho0 E nu K G c0 cs dp h of the body.
+std::vector<std::pair<std::string, double>> body_expression_constants(const Scene& scene, size_t body);
+
+}  // namespace mfsd

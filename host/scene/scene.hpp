@@ -1,0 +1,88 @@
+// The resolved scene: plain data built from the JSON file by scene_reader
+// (validated there) and consumed by the particle generator and the solvers.
+// No JSON types here: this header is also compiled by nvcc.
+#pragma once
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/scene/shape.hpp"
+#include "kernels/tlsph/hourglass.hpp"
+
+namespace mfsd {
+
+enum class MaterialModel { neo_hookean, saint_venant_kirchhoff };
+enum class HourglassControl { none, laplacian, genog };
+enum class SoundSpeed { bulk, p_wave };      // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
+enum class DampingForm { isotropic, split };  // one wave speed | c0 normal, c_s shear
+enum class Precision { single_precision, double_precision };
+
+struct MaterialSpec {
+  MaterialModel model = MaterialModel::neo_hookean;
+  double density = 0;
+  double youngs_modulus = 0;
+  double poisson_ratio = 0;
+};
+
+struct BodySpec {
+  std::string name;
+  Shape geometry;
+  double spacing = 0;
+  MaterialSpec material;
+  std::array<std::string, 3> initial_velocity{"0", "0", "0"};  // expressions
+};
+
+struct ClampSpec {
+  std::string body;
+  Shape region;
+};
+
+struct ProbeSpec {
+  std::string name;
+  Point3 point{0, 0, 0};
+  std::vector<std::string> fields;  // position, displacement, velocity, von_mises, J
+};
+
+struct SolverSpec {
+  HourglassControl hourglass = HourglassControl::genog;
+  double h_over_dp = 1.15;
+  double cfl = 0.6;
+  double end_time = 0;
+  double zeta = 1.07;
+  double genog_alpha = 8.0;
+  GenogLimiter genog_limiter = GenogLimiter::paper;
+  bool correction_in_force = true;
+  double damping_factor = 1.0;
+  DampingForm damping_form = DampingForm::isotropic;
+  SoundSpeed sound_speed = SoundSpeed::bulk;
+  Point3 gravity{0, 0, 0};
+  double correction_floor = 0.1;
+  bool reorder = true;
+  Precision precision = Precision::double_precision;
+};
+
+struct OutputSpec {
+  double interval = 0;        // VTU snapshots and energies
+  double probe_interval = 0;  // probes.csv rows
+  bool vtu = true;
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  int dimension = 2;
+  SolverSpec solver;
+  std::vector<BodySpec> bodies;
+  std::vector<ClampSpec> clamps;
+  std::vector<ProbeSpec> probes;
+  OutputSpec output;
+  Bounds bounds;  // particles leaving it stop the run
+  std::vector<std::pair<std::string, double>> constants;
+};
+
+const char* to_string(MaterialModel m);
+const char* to_string(HourglassControl h);
+const char* to_string(Precision p);
+
+}  // namespace mfsd

@@ -1,0 +1,346 @@
+#include "host/scene/scene_reader.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "host/expr/expression_error.hpp"
+#include "host/expr/program.hpp"
+#include "host/scene/scene_error.hpp"
+
+namespace mfsd {
+
+namespace {
+
+// Names a scene constant may not take: expression variables and the
+// per-body constants that body expressions receive.
+const std::set<std::string> kReservedNames = {"x0", "y0", "z0", "x",  "y",  "z",  "ux",   "uy", "uz",
+                                              "vx", "vy", "vz", "t",  "dt", "dx", "pi",   "c0", "cs",
+                                              "rho0", "h"};
+
+void line_column(const std::string& text, size_t byte, size_t& line, size_t& column) {
+  line = 1;
+  column = 1;
+  for (size_t k = 0; k < byte && k < text.size(); ++k) {
+    if (text[k] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+}
+
+Shape read_shape(JsonNode node, int dim);
+
+Shape read_shape_list(JsonNode& node, const std::string& key, Shape::Kind kind, int dim, size_t min_size) {
+  Shape s;
+  s.kind = kind;
+  auto items = node.array(key, true, min_size);
+  for (size_t k = 0; k < items.size(); ++k) s.children.push_back(read_shape(node.element(key, k, *items[k]), dim));
+  return s;
+}
+
+// A shape is an object with exactly one of: box {min, max}, union [...], difference [...].
+Shape read_shape(JsonNode node, int dim) {
+  const int kinds = int(node.has("box")) + int(node.has("union")) + int(node.has("difference"));
+  if (kinds != 1)
+    throw SceneError(node.path(), kinds == 0 ? "no shape" : "several shapes",
+                     "exactly one of \"box\", \"union\", \"difference\"");
+  Shape s;
+  if (node.has("box")) {
+    JsonNode box = node.object("box");
+    const auto lo = box.vector("min", size_t(dim), Range::any());
+    const auto hi = box.vector("max", size_t(dim), Range::any());
+    box.finish();
+    Point3 a{0, 0, 0}, b{0, 0, 0};
+    for (int k = 0; k < dim; ++k) {
+      a[k] = lo[k];
+      b[k] = hi[k];
+      if (!(b[k] > a[k]))
+        throw SceneError(box.key_path("max") + "/" + std::to_string(k), std::to_string(b[k]),
+                         "a value greater than min (" + std::to_string(a[k]) + ")");
+    }
+    s = Shape::box(a, b);
+  } else if (node.has("union")) {
+    s = read_shape_list(node, "union", Shape::Kind::union_of, dim, 1);
+  } else {
+    s = read_shape_list(node, "difference", Shape::Kind::difference, dim, 2);
+  }
+  node.finish();
+  return s;
+}
+
+MaterialSpec read_material(JsonNode m) {
+  MaterialSpec spec;
+  const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff"});
+  spec.model = model == "neo_hookean" ? MaterialModel::neo_hookean : MaterialModel::saint_venant_kirchhoff;
+  spec.density = m.number("density", Range::positive());
+  spec.youngs_modulus = m.number("youngs_modulus", Range::positive());
+  spec.poisson_ratio = m.number("poisson_ratio", Range{-1.0, 0.5, true, true, "a number in (-1, 0.5)"});
+  m.finish();
+  return spec;
+}
+
+SolverSpec read_solver(JsonNode s, int dim) {
+  SolverSpec spec;
+  s.choice("formulation", {"tlsph"}, "tlsph");
+  const std::string hg = s.choice("hourglass", {"none", "laplacian", "genog"}, "genog");
+  spec.hourglass = hg == "none" ? HourglassControl::none
+                                : (hg == "laplacian" ? HourglassControl::laplacian : HourglassControl::genog);
+  spec.end_time = s.number("end_time", Range::positive());
+  spec.h_over_dp = s.number("h_over_dp", 1.15, Range{1.0, 2.0, false, false, "a number in [1, 2]"});
+  spec.cfl = s.number("cfl", 0.6, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+  spec.precision =
+      s.choice("precision", {"double", "float"}, "double") == "float" ? Precision::single_precision
+                                                                       : Precision::double_precision;
+  spec.sound_speed = s.choice("sound_speed", {"bulk", "p_wave"}, "bulk") == "bulk" ? SoundSpeed::bulk
+                                                                                   : SoundSpeed::p_wave;
+  spec.correction_in_force = s.boolean("kernel_correction_in_force", true);
+  spec.correction_floor =
+      s.number("correction_floor", 0.1, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+  spec.reorder = s.boolean("reorder", true);
+  spec.zeta = s.number("zeta", 1.07, Range::positive());
+  {
+    JsonNode g = s.object_or_empty("genog");
+    spec.genog_alpha = g.number("alpha", 8.0, Range::positive());
+    spec.genog_limiter =
+        g.choice("limiter", {"paper", "capped"}, "paper") == "paper" ? GenogLimiter::paper : GenogLimiter::capped;
+    g.finish();
+  }
+  {
+    JsonNode d = s.object_or_empty("damping");
+    spec.damping_factor = d.number("factor", 1.0, Range::non_negative());
+    spec.damping_form = d.choice("form", {"isotropic", "split"}, "isotropic") == "isotropic" ? DampingForm::isotropic
+                                                                                          : DampingForm::split;
+    d.finish();
+  }
+  const auto g = s.vector("gravity", size_t(dim), std::vector<double>(size_t(dim), 0.0), Range::any());
+  for (int k = 0; k < dim; ++k) spec.gravity[k] = g[k];
+  s.finish();
+  return spec;
+}
+
+}  // namespace
+
+Json parse_scene_json(const std::string& text, const std::string& source_name) {
+  try {
+    return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const Json::parse_error& e) {
+    size_t line, column;
+    line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);
+    // nlohmann's text repeats the position: keep what follows "column N: ".
+    std::string what = e.what();
+    const auto p = what.find("column ");
+    if (p != std::string::npos && what.find(": ", p) != std::string::npos) what = what.substr(what.find(": ", p) + 2);
+    throw SceneError(source_name + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                     ": invalid JSON: " + what);
+  }
+}
+
+void apply_override(Json& doc, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError("--set " + assignment, "", "the form path=value, e.g. solver.hourglass=laplacian");
+  const std::string path = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  Json value;
+  try {
+    value = Json::parse(text);
+  } catch (const Json::parse_error&) {
+    value = text;  // a plain string such as laplacian
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string p; std::getline(ss, p, '.');) {
+    if (p.empty()) throw SceneError("--set " + path, "an empty path component", "names separated by '.'");
+    parts.push_back(p);
+  }
+  Json* node = &doc;
+  std::string walked;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const std::string& p = parts[k];
+    const bool last = k + 1 == parts.size();
+    walked += "/" + p;
+    if (node->is_array()) {
+      Json* next = nullptr;
+      const bool numeric = p.find_first_not_of("0123456789") == std::string::npos;
+      if (numeric && std::stoul(p) < node->size()) next = &(*node)[std::stoul(p)];
+      for (auto& e : *node)
+        if (!next && e.is_object() && e.contains("name") && e["name"] == p) next = &e;
+      if (!next)
+        throw SceneError("--set " + path, "no element '" + p + "' at " + walked,
+                         "an index below " + std::to_string(node->size()) + " or the name of an element");
+      if (last) *next = value;
+      node = next;
+    } else if (node->is_object()) {
+      if (last) {
+        (*node)[p] = value;
+      } else {
+        if (!node->contains(p)) (*node)[p] = Json::object();
+        node = &(*node)[p];
+      }
+    } else {
+      throw SceneError("--set " + path, json_type_name(*node) + " at " + walked, "an object or an array to descend into");
+    }
+  }
+}
+
+Scene read_scene(const Json& doc, Json& resolved) {
+  Scene scene;
+  resolved = Json::object();
+  // Constants first (in file order): numbers or expressions of earlier constants.
+  std::map<std::string, double> constants;
+  auto eval = [&constants](const std::string& text, const std::string& path) {
+    try {
+      expr::Program p = expr::compile(text, expr::VariableTable{}, constants);
+      return p.evaluate_host(nullptr);
+    } catch (const expr::ExpressionError& e) {
+      throw SceneError(path + ": " + e.what());
+    }
+  };
+  JsonNode root(doc, "", resolved, eval);
+  scene.name = root.string("name");
+  for (char c : scene.name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+      throw SceneError("/name", "\"" + scene.name + "\"", "a name of letters, digits, '_', '-' and '.' (it names the output folder)");
+  scene.description = root.string("description", "");
+  if (!root.has("dimension")) throw SceneError("/dimension", "nothing", "2 or 3 (this key is required)");
+  scene.dimension = int(root.integer("dimension", 2, 2, 3));
+  const int dim = scene.dimension;
+
+  if (auto c = root.optional_object("constants")) {
+    const Json& src = doc["constants"];
+    for (auto it = src.begin(); it != src.end(); ++it) {
+      const std::string name = it.key();
+      const std::string path = "/constants/" + name;
+      if (kReservedNames.count(name))
+        throw SceneError(path, "the reserved name '" + name + "'", "another name (reserved: variables x0 y0 z0 x y z ux uy uz vx vy vz t dt dx, pi, and the body constants c0 cs rho0 h)");
+      if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
+        throw SceneError(path, "the name '" + name + "'", "a name starting with a letter or '_'");
+      const double v = c->number(name, Range::any());
+      constants[name] = v;
+      scene.constants.emplace_back(name, v);
+    }
+    c->finish();
+  }
+
+  scene.solver = read_solver(root.object("solver"), dim);
+
+  auto bodies = root.array("bodies", true, 1);
+  std::set<std::string> names;
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    JsonNode node = root.element("bodies", b, *bodies[b]);
+    BodySpec body;
+    body.name = node.string("name");
+    if (!names.insert(body.name).second)
+      throw SceneError(node.key_path("name"), "\"" + body.name + "\"", "a name no other body has");
+    body.spacing = node.number("spacing", Range::positive());
+    body.geometry = read_shape(node.object("geometry"), dim);
+    body.material = read_material(node.object("material"));
+    JsonNode v = node.object_or_empty("initial_velocity");
+    const char* axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < dim; ++a) body.initial_velocity[size_t(a)] = v.expression(axes[a], "0");
+    v.finish();
+    node.finish();
+    scene.bodies.push_back(body);
+  }
+
+  auto clamps = root.array("clamps", false);
+  for (size_t c = 0; c < clamps.size(); ++c) {
+    JsonNode node = root.element("clamps", c, *clamps[c]);
+    ClampSpec clamp;
+    clamp.body = node.string("body");
+    if (!names.count(clamp.body))
+      throw SceneError(node.key_path("body"), "\"" + clamp.body + "\"", "the name of a body");
+    clamp.region = read_shape(node.object("region"), dim);
+    node.finish();
+    scene.clamps.push_back(clamp);
+  }
+
+  auto probes = root.array("probes", false);
+  std::set<std::string> probe_names;
+  for (size_t p = 0; p < probes.size(); ++p) {
+    JsonNode node = root.element("probes", p, *probes[p]);
+    ProbeSpec probe;
+    probe.name = node.string("name");
+    if (!probe_names.insert(probe.name).second)
+      throw SceneError(node.key_path("name"), "\"" + probe.name + "\"", "a name no other probe has");
+    const auto x = node.vector("point", size_t(dim), Range::any());
+    for (int a = 0; a < dim; ++a) probe.point[a] = x[a];
+    auto fields = node.array("fields", false);
+    const std::set<std::string> allowed = {"position", "displacement", "velocity", "von_mises", "J"};
+    for (size_t k = 0; k < fields.size(); ++k) {
+      const Json& f = *fields[k];
+      const std::string fp = node.key_path("fields") + "/" + std::to_string(k);
+      if (!f.is_string() || !allowed.count(f.get<std::string>()))
+        throw SceneError(fp, json_text(f), "one of \"position\", \"displacement\", \"velocity\", \"von_mises\", \"J\"");
+      probe.fields.push_back(f.get<std::string>());
+      node.resolved()["fields"][k] = f;
+    }
+    if (probe.fields.empty()) {
+      probe.fields = {"position"};
+      node.resolved()["fields"] = Json::array({"position"});
+    }
+    node.finish();
+    scene.probes.push_back(probe);
+  }
+
+  {
+    JsonNode out = root.object_or_empty("output");
+    scene.output.interval = out.number("interval", scene.solver.end_time / 100.0, Range::positive());
+    scene.output.probe_interval =
+        out.number("probe_interval", scene.output.interval / 20.0, Range::positive());
+    scene.output.vtu = out.boolean("vtu", true);
+    out.finish();
+  }
+
+  // Bounds: default = the bodies' bounding box grown by its size on every side.
+  Bounds bb = scene.bodies[0].geometry.bounds(dim);
+  for (auto& b : scene.bodies) {
+    const Bounds c = b.geometry.bounds(dim);
+    for (int a = 0; a < dim; ++a) bb.min[a] = std::min(bb.min[a], c.min[a]), bb.max[a] = std::max(bb.max[a], c.max[a]);
+  }
+  double size = 0;
+  for (int a = 0; a < dim; ++a) size = std::max(size, bb.max[a] - bb.min[a]);
+  std::vector<double> lo(static_cast<size_t>(dim)), hi(static_cast<size_t>(dim));
+  for (int a = 0; a < dim; ++a) lo[size_t(a)] = bb.min[a] - size, hi[size_t(a)] = bb.max[a] + size;
+  {
+    JsonNode bn = root.object_or_empty("bounds");
+    lo = bn.vector("min", size_t(dim), lo, Range::any());
+    hi = bn.vector("max", size_t(dim), hi, Range::any());
+    bn.finish();
+  }
+  for (int a = 0; a < dim; ++a) {
+    scene.bounds.min[a] = lo[size_t(a)];
+    scene.bounds.max[a] = hi[size_t(a)];
+    if (!(hi[size_t(a)] > lo[size_t(a)]))
+      throw SceneError("/bounds/max/" + std::to_string(a), std::to_string(hi[size_t(a)]), "a value greater than /bounds/min");
+  }
+  root.finish();
+  return scene;
+}
+
+SceneDocument load_scene_text(const std::string& text, const std::string& source_name,
+                              const std::vector<std::string>& overrides) {
+  SceneDocument d;
+  d.source_name = source_name;
+  d.source = parse_scene_json(text, source_name);
+  if (!d.source.is_object()) throw SceneError(source_name, json_type_name(d.source), "a JSON object at the top level");
+  for (auto& o : overrides) apply_override(d.source, o);
+  d.scene = read_scene(d.source, d.resolved);
+  return d;
+}
+
+SceneDocument load_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, "", "a readable scene file (it cannot be opened)");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return load_scene_text(ss.str(), path, overrides);
+}
+
+}  // namespace mfsd

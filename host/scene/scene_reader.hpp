@@ -1,0 +1,39 @@
+// Reads a scene file (JSON): parse with line/column errors, apply command-line
+// overrides (--set path=value), validate every key into a Scene and keep the
+// resolved document (defaults filled in) for run.json.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "host/scene/json_node.hpp"
+#include "host/scene/scene.hpp"
+
+namespace mfsd {
+
+struct SceneDocument {
+  std::string source_name;  // file path or "<default scene>"
+  Json source;              // as read, overrides applied
+  Json resolved;            // every key with its value or default
+  Scene scene;
+};
+
+// Parses JSON text; syntax errors become SceneErrors "name:line:column: ...".
+Json parse_scene_json(const std::string& text, const std::string& source_name);
+
+// Applies "path=value": path of object keys and array indices (or array
+// element names) separated by '.', e.g. solver.hourglass=laplacian,
+// bodies.plate.material.poisson_ratio=0.4, constants.vf=0.1. The value is
+// parsed as JSON, else taken as a string.
+void apply_override(Json& doc, const std::string& assignment);
+
+// Validates the document into a Scene; fills `resolved`.
+Scene read_scene(const Json& doc, Json& resolved);
+
+SceneDocument load_scene_file(const std::string& path, const std::vector<std::string>& overrides);
+SceneDocument load_scene_text(const std::string& text, const std::string& source_name,
+                              const std::vector<std::string>& overrides);
+
+// The scene `mfsd run` uses without a file (configs/oscillating_plate_2d.json, H/dp = 10).
+const std::string& default_scene_text();
+
+}  // namespace mfsd

@@ -1,0 +1,25 @@
+// Thrown when a run meets NaN/Inf or a particle leaves the scene's bounds.
+// The CLI reports it and exits with code 3.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace mfsd {
+
+class NumericalFailure : public std::runtime_error {
+ public:
+  NumericalFailure(long step, double time, long particle_id, const std::string& body, const std::string& field,
+                   const std::string& detail)
+      : std::runtime_error("step " + std::to_string(step) + " (t = " + std::to_string(time) + "): particle " +
+                           std::to_string(particle_id) + " of body '" + body + "': " + field + " " + detail),
+        step_(step),
+        particle_id_(particle_id) {}
+  long step() const { return step_; }
+  long particle_id() const { return particle_id_; }
+
+ private:
+  long step_;
+  long particle_id_;
+};
+
+}  // namespace mfsd

@@ -1,0 +1,81 @@
+// The interface between the run driver (g++) and a solver instantiated for a
+// backend, precision and dimension (g++ for cpu, nvcc for cuda). Only plain
+// host data crosses it.
+#pragma once
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/scene/particle_generator.hpp"
+#include "host/scene/scene.hpp"
+#include "host/solver/stage_timers.hpp"
+
+namespace mfsd {
+
+// Host copies of the particle fields, in double, 3 components per vector
+// (z = 0 in 2-D), in the solver's current particle order.
+struct Snapshot {
+  size_t n = 0;
+  std::vector<long> id;
+  std::vector<int> body;
+  std::vector<unsigned char> constrained;
+  std::vector<double> position, displacement, velocity;  // 3 n
+  std::vector<double> von_mises, jacobian, hourglass;    // n
+};
+
+struct EnergySample {
+  double kinetic = 0, strain = 0;
+  double hourglass_max = 0, hourglass_mean = 0;
+};
+
+struct ProbeSample {
+  Point3 position{}, displacement{}, velocity{};
+  double von_mises = 0, jacobian = 0;
+};
+
+struct SetupReport {
+  long particles = 0;
+  std::vector<long> body_particles;
+  long pairs = 0;
+  double mean_neighbors = 0;
+  long min_neighbors = 0, max_neighbors = 0;
+  long regularized_corrections = 0;  // B0 that needed the eigenvalue floor
+  double bytes_per_particle = 0;
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  // Builds neighbour lists and reference data; computes the initial rates.
+  virtual void initialize() = 0;
+  // Advances one time step; throws NumericalFailure on NaN/Inf or escape.
+  virtual void step() = 0;
+  // Caps the next time step (end time, max step); never enlarges it.
+  virtual void limit_next_dt(double dt_max) = 0;
+  virtual double time() const = 0;
+  virtual double next_dt() const = 0;
+  virtual long steps() const = 0;
+  virtual Snapshot snapshot() = 0;
+  virtual EnergySample energies() = 0;
+  virtual std::vector<ProbeSample> probes() = 0;
+  virtual const StageTimers& timers() const = 0;
+  virtual SetupReport setup_report() const = 0;
+};
+
+struct SolverOptions {
+  std::string backend = "cpu";
+  int threads = 0;  // 0 = OpenMP default
+  Precision precision = Precision::double_precision;
+};
+
+// Factory: picks the instantiation for backend x precision x dimension.
+std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& particles,
+                                    const SolverOptions& options);
+
+// CUDA availability: compiled in, and a device present.
+bool cuda_compiled();
+int cuda_device_count();
+std::string cuda_device_name();
+
+}  // namespace mfsd

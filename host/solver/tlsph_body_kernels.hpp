@@ -1,0 +1,98 @@
+// The kernels of one body, specialized at compile time on its material and
+// hourglass variant (design.md: "the material model and the hourglass variant
+// are template parameters of the stress and force functors"). The solver
+// holds one BodyKernels per body behind a host-side virtual interface; the
+// kernels themselves contain no run-time switches on the model.
+#pragma once
+#include <memory>
+#include <stdexcept>
+
+#include "host/backend/algorithms.hpp"
+#include "host/particles/particle_set.hpp"
+#include "host/scene/body_properties.hpp"
+#include "host/solver/tlsph_views.hpp"
+#include "kernels/materials/neo_hookean.hpp"
+#include "kernels/materials/saint_venant_kirchhoff.hpp"
+#include "kernels/tlsph/acceleration.hpp"
+#include "kernels/tlsph/observables.hpp"
+#include "kernels/tlsph/stress.hpp"
+
+namespace mfsd {
+
+template <class B, int D, class Real>
+class BodyKernels {
+ public:
+  virtual ~BodyKernels() = default;
+  virtual void stress(const TlsphViews<D, Real>& v) const = 0;
+  virtual void acceleration(const TlsphViews<D, Real>& v) const = 0;
+  virtual void stress_observables(const TlsphViews<D, Real>& v) const = 0;
+  virtual EnergySums energy(const TlsphViews<D, Real>& v) const = 0;
+};
+
+struct BodyKernelSettings {
+  BodyRange range;
+  double density;
+  Point3 gravity;
+  double zeta;
+  bool correction_in_force;
+  GenogLimiter genog_limiter;
+  double genog_alpha;
+  double damping_normal;  // factor rho0 h c0 / 2
+  double damping_shear;   // factor rho0 h c / 2 on off-diagonal components
+};
+
+template <class B, int D, class Real, class Material, class Hourglass>
+class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
+ public:
+  BodyKernelsImpl(const Material& m, const BodyKernelSettings& s) : material_(m), s_(s) {}
+
+  void stress(const TlsphViews<D, Real>& v) const override {
+    StressFunctor<D, Real, Material, Hourglass> f{material_,
+                                                  {Real(s_.damping_normal), Real(s_.damping_shear)},
+                                                  Real(s_.zeta),
+                                                  s_.correction_in_force,
+                                                  v.deformation_gradient,
+                                                  v.deformation_rate,
+                                                  v.correction,
+                                                  v.force_stress,
+                                                  v.shear_coefficient,
+                                                  v.shear_stress,
+                                                  v.inverse_F};
+    parallel_for<B>(s_.range.begin, s_.range.end, f);
+  }
+
+  void acceleration(const TlsphViews<D, Real>& v) const override {
+    Vec<D, Real> g;
+    for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
+    AccelerationFunctor<D, Real, Hourglass> f{v.pairs,
+                                              v.force_stress,
+                                              v.shear_coefficient,
+                                              v.shear_stress,
+                                              v.inverse_F,
+                                              v.displacement,
+                                              Real(1.0 / s_.density),
+                                              g,
+                                              GenogWeight<Real>{s_.genog_limiter, Real(s_.genog_alpha * D)},
+                                              v.acceleration};
+    parallel_for<B>(s_.range.begin, s_.range.end, f);
+  }
+
+  void stress_observables(const TlsphViews<D, Real>& v) const override {
+    parallel_for<B>(s_.range.begin, s_.range.end,
+                    StressObservablesFunctor<D, Real, Material>{material_, v.deformation_gradient, v.von_mises,
+                                                                v.jacobian});
+  }
+
+  EnergySums energy(const TlsphViews<D, Real>& v) const override {
+    return transform_reduce<B>(s_.range.begin, s_.range.end,
+                               EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.velocity,
+                                                                v.volume, Real(s_.density)},
+                               EnergySums{0.0, 0.0}, EnergySumsPlus{});
+  }
+
+ private:
+  Material material_;
+  BodyKernelSettings s_;
+};
+
+}  // namespace mfsd

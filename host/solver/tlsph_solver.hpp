@@ -1,0 +1,471 @@
+// Total-Lagrangian SPH solver for one backend, precision and dimension.
+// A step is the position-based Verlet pipeline of seed 000 eq. 35-38:
+//   half_step        F, u to t + dt/2                       (eq. 35)
+//   stress           per body, material x hourglass variant  (eq. 3, 7, 25-28)
+//   force            per body, gathered pair sums            (eq. 20, 27, 32)
+//   velocity         v to t + dt, clamps                     (eq. 36)
+//   deformation_rate dF/dt at the new velocity               (eq. 22)
+//   half_step        F, u to t + dt                          (eq. 37)
+//   time_step        max |v|, max |a|, health; next dt       (eq. 38)
+// Each stage is timed on its own. Include after the backend header.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/neighbors/reference_neighbor_list.hpp"
+#include "host/particles/field_names.hpp"
+#include "host/particles/particle_set.hpp"
+#include "host/scene/body_properties.hpp"
+#include "host/solver/numerical_failure.hpp"
+#include "host/solver/solver.hpp"
+#include "host/solver/tlsph_body_kernels.hpp"
+#include "kernels/tlsph/correction_matrix.hpp"
+#include "kernels/tlsph/deformation_rate.hpp"
+#include "kernels/tlsph/hourglass_indicator.hpp"
+#include "kernels/tlsph/kinematics.hpp"
+#include "kernels/tlsph/step_statistics.hpp"
+
+namespace mfsd {
+
+// Sets F = I.
+template <int D, class Real>
+struct IdentityFunctor {
+  Mat<D, Real>* m;
+  MFSD_HD void operator()(Index i) const { m[i] = Mat<D, Real>::identity(); }
+};
+
+// Copies selected particles' fields into a small buffer (probes).
+template <int D, class Real>
+struct ProbeGatherFunctor {
+  const Index* index;
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Vec<D, Real>* velocity;
+  const Real* von_mises;
+  const Real* jacobian;
+  Real* out;  // per probe: x(D) u(D) v(D) vm J
+  MFSD_HD void operator()(Index k) const {
+    const Index i = index[k];
+    Real* o = out + k * (3 * D + 2);
+    for (int a = 0; a < D; ++a) {
+      o[a] = reference_position[i].v[a] + displacement[i].v[a];
+      o[D + a] = displacement[i].v[a];
+      o[2 * D + a] = velocity[i].v[a];
+    }
+    o[3 * D] = von_mises[i];
+    o[3 * D + 1] = jacobian[i];
+  }
+};
+
+template <class Real>
+struct MaxPlus {
+  MFSD_HD Real operator()(Real a, Real b) const { return math::max(a, b); }
+};
+template <class Real>
+struct ReadScalar {
+  const Real* p;
+  MFSD_HD double operator()(Index i) const { return double(p[i]); }
+};
+template <class Real>
+struct ReadScalarReal {
+  const Real* p;
+  MFSD_HD Real operator()(Index i) const { return p[i]; }
+};
+
+template <class B, int D, class Real>
+class TlsphSolver final : public Solver {
+ public:
+  TlsphSolver(const Scene& scene, const InitialParticles& init)
+      : scene_(scene), init_(init), particles_(Index(init.size())) {
+    for (const char* name : {"half_step", "stress", "force", "velocity", "deformation_rate", "time_step"})
+      timers_.id(name);
+  }
+
+  void initialize() override {
+    const Index n = particles_.size();
+    upload_initial_particles();
+
+    // Reference neighbour search with reordering, then B0 (seed 000 eq. 21).
+    std::vector<BodySearch> search;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      ranges_.push_back(BodyRange{Index(init_.body_range[b].begin), Index(init_.body_range[b].end)});
+      search.push_back(BodySearch{ranges_.back(), props(b).h});
+    }
+    const bool paper_limiter = scene_.solver.hourglass == HourglassControl::genog &&
+                               scene_.solver.genog_limiter == GenogLimiter::paper;
+    pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter);
+    particles_.remove(field::reference_position_double);
+
+    auto* B0 = particles_.template add<Mat<D, Real>>(field::correction_matrix);
+    DeviceVector<B, unsigned char> regularized(size_t(n), 0);
+    parallel_for<B>(n, CorrectionMatrixFunctor<D, Real>{pairs_.view(), B0, raw(regularized),
+                                                        Real(scene_.solver.correction_floor)});
+    report_.regularized_corrections =
+        long(thrust::count(BackendTraits<B>::policy(), regularized.begin(), regularized.end(), (unsigned char)1));
+
+    // State and stage fields, registered by need.
+    particles_.template add<Mat<D, Real>>(field::deformation_gradient);
+    particles_.template add<Mat<D, Real>>(field::deformation_rate);
+    particles_.template add<Vec<D, Real>>(field::acceleration);
+    particles_.template add<Mat<D, Real>>(field::force_stress);
+    particles_.template add<Mat<D, Real>>(field::inverse_deformation_gradient);  // genog + indicator scratch
+    if (scene_.solver.hourglass == HourglassControl::laplacian)
+      particles_.template add<Real>(field::shear_coefficient);
+    if (scene_.solver.hourglass == HourglassControl::genog)
+      particles_.template add<Mat<D, Real>>(field::shear_stress);
+    particles_.template add<Real>(field::hourglass_indicator);
+    particles_.template add<Real>(field::von_mises);
+    particles_.template add<Real>(field::jacobian);
+    bind_views();
+    parallel_for<B>(n, IdentityFunctor<D, Real>{v_.deformation_gradient});
+
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) bodies_.push_back(make_body_kernels(b));
+
+    // Constrained particles and probe particles, located after reordering.
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    const auto constrained = to_host<B>(particles_.template buffer<unsigned char>(field::constrained));
+    std::vector<Index> clamp_list, where(ids.size());
+    for (size_t k = 0; k < ids.size(); ++k) {
+      where[size_t(ids[k])] = Index(k);
+      if (constrained[k]) clamp_list.push_back(Index(k));
+    }
+    from_host<B>(clamp_list, constrained_list_);
+    std::vector<Index> probe_index;
+    for (long id : init_.probe_particle) probe_index.push_back(where[size_t(id)]);
+    from_host<B>(probe_index, probe_index_);
+    probe_buffer_.resize(probe_index.size() * (3 * D + 2));
+
+    // Initial rates and forces, so that the first time step sees them.
+    parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
+    for (auto& k : bodies_) k->stress(v_);
+    for (auto& k : bodies_) k->acceleration(v_);
+    update_time_step(statistics());
+
+    // Set-up report.
+    report_.particles = n;
+    for (auto& r : ranges_) report_.body_particles.push_back(r.size());
+    const auto offsets = to_host<B>(pairs_.offsets);
+    report_.pairs = long(pairs_.pairs());
+    report_.mean_neighbors = n ? double(report_.pairs) / n : 0;
+    report_.min_neighbors = std::numeric_limits<long>::max();
+    report_.max_neighbors = 0;
+    for (Index i = 0; i < n; ++i) {
+      const long c = long(offsets[size_t(i) + 1] - offsets[size_t(i)]);
+      report_.min_neighbors = std::min(report_.min_neighbors, c);
+      report_.max_neighbors = std::max(report_.max_neighbors, c);
+    }
+    if (n == 0) report_.min_neighbors = 0;
+    const double pair_bytes = double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + 2 * sizeof(Real) +
+                                                        (paper_limiter ? sizeof(Real) : 0));
+    report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
+  }
+
+  void step() override {
+    const Index n = particles_.size();
+    const double dt = dt_next_;
+    const Real half_dt = Real(0.5 * dt);
+    run("half_step", [&] {
+      parallel_for<B>(n, HalfStepFunctor<D, Real>{v_.deformation_gradient, v_.deformation_rate, v_.displacement,
+                                                  v_.velocity, half_dt});
+    });
+    run("stress", [&] {
+      for (auto& k : bodies_) k->stress(v_);
+    });
+    run("force", [&] {
+      for (auto& k : bodies_) k->acceleration(v_);
+    });
+    run("velocity", [&] {
+      parallel_for<B>(n, VelocityUpdateFunctor<D, Real>{v_.velocity, v_.acceleration, Real(dt)});
+      parallel_for<B>(Index(constrained_list_.size()),
+                      ClampFunctor<D, Real>{raw(constrained_list_), v_.displacement, v_.velocity});
+    });
+    run("deformation_rate", [&] {
+      parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
+    });
+    run("half_step", [&] {
+      parallel_for<B>(n, HalfStepFunctor<D, Real>{v_.deformation_gradient, v_.deformation_rate, v_.displacement,
+                                                  v_.velocity, half_dt});
+    });
+    StepStatistics<Real> stats;
+    run("time_step", [&] { stats = statistics(); });
+    clock_.collect(timers_);
+    time_ += dt;
+    ++steps_;
+    if (stats.first_bad < n) fail(stats.first_bad);
+    update_time_step(stats);
+  }
+
+  void limit_next_dt(double dt_max) override { dt_next_ = std::min(dt_next_, dt_max); }
+  double time() const override { return time_; }
+  double next_dt() const override { return dt_next_; }
+  long steps() const override { return steps_; }
+  const StageTimers& timers() const override { return timers_; }
+  SetupReport setup_report() const override { return report_; }
+
+  Snapshot snapshot() override {
+    compute_observables();
+    Snapshot s;
+    const Index n = particles_.size();
+    s.n = size_t(n);
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    s.id.assign(ids.begin(), ids.end());
+    s.body = to_host<B>(particles_.template buffer<int>(field::body));
+    s.constrained = to_host<B>(particles_.template buffer<unsigned char>(field::constrained));
+    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
+    const auto v = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::velocity));
+    s.position.assign(3 * s.n, 0.0);
+    s.displacement.assign(3 * s.n, 0.0);
+    s.velocity.assign(3 * s.n, 0.0);
+    for (size_t i = 0; i < s.n; ++i)
+      for (int a = 0; a < D; ++a) {
+        s.position[3 * i + a] = double(X[i].v[a]) + double(u[i].v[a]);
+        s.displacement[3 * i + a] = double(u[i].v[a]);
+        s.velocity[3 * i + a] = double(v[i].v[a]);
+      }
+    auto to_double = [](const std::vector<Real>& r) { return std::vector<double>(r.begin(), r.end()); };
+    s.von_mises = to_double(to_host<B>(particles_.template buffer<Real>(field::von_mises)));
+    s.jacobian = to_double(to_host<B>(particles_.template buffer<Real>(field::jacobian)));
+    s.hourglass = to_double(to_host<B>(particles_.template buffer<Real>(field::hourglass_indicator)));
+    return s;
+  }
+
+  EnergySample energies() override {
+    EnergySample e;
+    for (auto& k : bodies_) {
+      const EnergySums s = k->energy(v_);
+      e.kinetic += s.kinetic;
+      e.strain += s.strain;
+    }
+    compute_hourglass_indicator();
+    const Index n = particles_.size();
+    e.hourglass_max = double(transform_reduce<B>(0, n, ReadScalarReal<Real>{v_.hourglass_indicator}, Real(0),
+                                                 MaxPlus<Real>{}));
+    e.hourglass_mean =
+        n ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator}, 0.0, thrust::plus<double>{}) / n
+          : 0.0;
+    return e;
+  }
+
+  std::vector<ProbeSample> probes() override {
+    std::vector<ProbeSample> out(probe_index_.size());
+    if (out.empty()) return out;
+    for (auto& k : bodies_) k->stress_observables(v_);
+    parallel_for<B>(Index(probe_index_.size()),
+                    ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement,
+                                                v_.velocity, v_.von_mises, v_.jacobian, raw(probe_buffer_)});
+    const auto h = to_host<B>(probe_buffer_);
+    for (size_t k = 0; k < out.size(); ++k) {
+      const Real* o = h.data() + k * (3 * D + 2);
+      for (int a = 0; a < D; ++a) {
+        out[k].position[a] = double(o[a]);
+        out[k].displacement[a] = double(o[D + a]);
+        out[k].velocity[a] = double(o[2 * D + a]);
+      }
+      out[k].von_mises = double(o[3 * D]);
+      out[k].jacobian = double(o[3 * D + 1]);
+    }
+    return out;
+  }
+
+ private:
+  const BodyProperties& props(size_t b) {
+    while (props_.size() < scene_.bodies.size())
+      props_.push_back(body_properties(scene_.bodies[props_.size()], scene_.solver, D));
+    return props_[b];
+  }
+
+  template <class F>
+  void run(const char* name, F&& f) {
+    const int id = timers_.id(name);
+    clock_.start(id);
+    f();
+    clock_.stop(id, timers_);
+  }
+
+  void upload_initial_particles() {
+    const size_t n = init_.size();
+    std::vector<Index> id(n);
+    std::vector<Vec<D, double>> xd(n);
+    std::vector<Vec<D, Real>> x(n), v(n);
+    std::vector<Real> volume(n);
+    for (size_t i = 0; i < n; ++i) {
+      id[i] = Index(i);
+      for (int a = 0; a < D; ++a) {
+        xd[i].v[a] = init_.position[i][a];
+        x[i].v[a] = Real(init_.position[i][a]);
+        v[i].v[a] = Real(init_.velocity[i][a]);
+      }
+      volume[i] = Real(init_.volume[i]);
+    }
+    particles_.template add<Index>(field::id);
+    from_host<B>(id, particles_.template buffer<Index>(field::id));
+    particles_.template add<int>(field::body);
+    from_host<B>(init_.body, particles_.template buffer<int>(field::body));
+    particles_.template add<unsigned char>(field::constrained);
+    from_host<B>(init_.constrained, particles_.template buffer<unsigned char>(field::constrained));
+    particles_.template add<Vec<D, double>>(field::reference_position_double);
+    from_host<B>(xd, particles_.template buffer<Vec<D, double>>(field::reference_position_double));
+    particles_.template add<Vec<D, Real>>(field::reference_position);
+    from_host<B>(x, particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    particles_.template add<Vec<D, Real>>(field::velocity);
+    from_host<B>(v, particles_.template buffer<Vec<D, Real>>(field::velocity));
+    particles_.template add<Vec<D, Real>>(field::displacement);
+    particles_.template add<Real>(field::volume);
+    from_host<B>(volume, particles_.template buffer<Real>(field::volume));
+  }
+
+  void bind_views() {
+    auto opt_real = [&](const char* name) -> Real* {
+      return particles_.has(name) ? particles_.template get<Real>(name) : nullptr;
+    };
+    auto opt_mat = [&](const char* name) -> Mat<D, Real>* {
+      return particles_.has(name) ? particles_.template get<Mat<D, Real>>(name) : nullptr;
+    };
+    v_.pairs = pairs_.view();
+    v_.reference_position = particles_.template get<Vec<D, Real>>(field::reference_position);
+    v_.displacement = particles_.template get<Vec<D, Real>>(field::displacement);
+    v_.velocity = particles_.template get<Vec<D, Real>>(field::velocity);
+    v_.acceleration = particles_.template get<Vec<D, Real>>(field::acceleration);
+    v_.volume = particles_.template get<Real>(field::volume);
+    v_.deformation_gradient = particles_.template get<Mat<D, Real>>(field::deformation_gradient);
+    v_.deformation_rate = particles_.template get<Mat<D, Real>>(field::deformation_rate);
+    v_.correction = particles_.template get<Mat<D, Real>>(field::correction_matrix);
+    v_.force_stress = particles_.template get<Mat<D, Real>>(field::force_stress);
+    v_.shear_coefficient = opt_real(field::shear_coefficient);
+    v_.shear_stress = opt_mat(field::shear_stress);
+    v_.inverse_F = opt_mat(field::inverse_deformation_gradient);
+    v_.hourglass_indicator = particles_.template get<Real>(field::hourglass_indicator);
+    v_.von_mises = particles_.template get<Real>(field::von_mises);
+    v_.jacobian = particles_.template get<Real>(field::jacobian);
+  }
+
+  std::unique_ptr<BodyKernels<B, D, Real>> make_body_kernels(size_t b) {
+    const BodySpec& spec = scene_.bodies[b];
+    const BodyProperties& p = props(b);
+    const SolverSpec& s = scene_.solver;
+    BodyKernelSettings k;
+    k.range = ranges_[b];
+    k.density = spec.material.density;
+    k.gravity = s.gravity;
+    k.zeta = s.zeta;
+    k.correction_in_force = s.correction_in_force;
+    k.genog_limiter = s.genog_limiter;
+    k.genog_alpha = s.genog_alpha;
+    // tau_d = (chi/2) db/dt, chi = rho0 c h / 2 (seed 003 eq. 23): coefficient of E_dot is rho0 c h / 2.
+    const double base = s.damping_factor * spec.material.density * p.h * 0.5;
+    k.damping_normal = base * p.c0;
+    k.damping_shear = base * (s.damping_form == DampingForm::split ? p.c_shear : p.c0);
+    if (spec.material.model == MaterialModel::neo_hookean)
+      return make_variant(NeoHookean<D, Real>{Real(p.K), Real(p.G)}, k);
+    return make_variant(SaintVenantKirchhoff<D, Real>{Real(p.K), Real(p.G), Real(p.lambda)}, k);
+  }
+
+  template <class Material>
+  std::unique_ptr<BodyKernels<B, D, Real>> make_variant(const Material& m, const BodyKernelSettings& k) {
+    switch (scene_.solver.hourglass) {
+      case HourglassControl::none:
+        return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassNone>>(m, k);
+      case HourglassControl::laplacian:
+        return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassLaplacian>>(m, k);
+      case HourglassControl::genog:
+        return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassGenog>>(m, k);
+    }
+    throw std::logic_error("unknown hourglass variant");
+  }
+
+  StepStatistics<Real> statistics() {
+    const Index n = particles_.size();
+    StepStatisticsFunctor<D, Real> f{v_.reference_position, v_.displacement, v_.velocity, v_.acceleration, {}, {}, n};
+    for (int a = 0; a < D; ++a) {
+      f.lower.v[a] = Real(scene_.bounds.min[a]);
+      f.upper.v[a] = Real(scene_.bounds.max[a]);
+    }
+    return transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), n}, StepStatisticsCombine<Real>{});
+  }
+
+  // dt = CFL min(h/(c0 + |v|max), sqrt(h/|a|max)) (seed 000 eq. 38).
+  void update_time_step(const StepStatistics<Real>& s) {
+    const double vmax = std::sqrt(double(s.max_speed2));
+    const double amax = std::sqrt(double(s.max_acceleration2));
+    double dt = std::numeric_limits<double>::infinity();
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      dt = std::min(dt, props(b).h / (props(b).c0 + vmax));
+      if (amax > 0) dt = std::min(dt, std::sqrt(props(b).h / amax));
+    }
+    dt_next_ = scene_.solver.cfl * dt;
+  }
+
+  [[noreturn]] void fail(Index i) {
+    auto one = [&](const char* name, auto tag) {
+      using T = decltype(tag);
+      return to_host<B>(particles_.template buffer<T>(name))[size_t(i)];
+    };
+    const Index id = one(field::id, Index{});
+    const int body = one(field::body, int{});
+    const auto X = one(field::reference_position, Vec<D, Real>{});
+    const auto u = one(field::displacement, Vec<D, Real>{});
+    const auto v = one(field::velocity, Vec<D, Real>{});
+    const auto a = one(field::acceleration, Vec<D, Real>{});
+    auto text = [](const Vec<D, Real>& w) {
+      std::string s = "(";
+      for (int k = 0; k < D; ++k) s += (k ? ", " : "") + std::to_string(double(w.v[k]));
+      return s + ")";
+    };
+    auto finite = [](const Vec<D, Real>& w) {
+      for (int k = 0; k < D; ++k)
+        if (!std::isfinite(double(w.v[k]))) return false;
+      return true;
+    };
+    std::string fieldname, detail;
+    if (!finite(a)) {
+      fieldname = "acceleration";
+      detail = "is not finite: " + text(a);
+    } else if (!finite(v)) {
+      fieldname = "velocity";
+      detail = "is not finite: " + text(v);
+    } else if (!finite(u)) {
+      fieldname = "displacement";
+      detail = "is not finite: " + text(u);
+    } else {
+      fieldname = "position";
+      detail = text(X + u) + " left the scene bounds";
+    }
+    throw NumericalFailure(steps_, time_, long(id), scene_.bodies[size_t(body)].name, fieldname, detail);
+  }
+
+  void compute_hourglass_indicator() {
+    const Index n = particles_.size();
+    parallel_for<B>(n, InverseDeformationFunctor<D, Real>{v_.deformation_gradient, v_.inverse_F});
+    parallel_for<B>(n, HourglassIndicatorFunctor<D, Real>{v_.pairs, v_.inverse_F, v_.displacement,
+                                                          v_.hourglass_indicator});
+  }
+
+  void compute_observables() {
+    for (auto& k : bodies_) k->stress_observables(v_);
+    compute_hourglass_indicator();
+  }
+
+  Scene scene_;
+  InitialParticles init_;
+  std::vector<BodyProperties> props_;
+  ParticleSet<B> particles_;
+  ReferenceNeighborList<B, D, Real> pairs_;
+  std::vector<BodyRange> ranges_;
+  std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
+  DeviceVector<B, Index> constrained_list_;
+  DeviceVector<B, Index> probe_index_;
+  DeviceVector<B, Real> probe_buffer_;
+  TlsphViews<D, Real> v_{};
+  StageClock<B> clock_;
+  StageTimers timers_;
+  SetupReport report_;
+  double time_ = 0, dt_next_ = 0;
+  long steps_ = 0;
+};
+
+}  // namespace mfsd

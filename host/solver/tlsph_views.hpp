@@ -1,0 +1,29 @@
+// Raw views of the TLSPH particle fields and reference pairs, gathered once
+// after set-up (buffers never move afterwards) and handed to the functors.
+#pragma once
+#include "kernels/core/mat.hpp"
+#include "kernels/tlsph/reference_pairs.hpp"
+
+namespace mfsd {
+
+template <int D, class Real>
+struct TlsphViews {
+  ReferencePairs<D, Real> pairs;
+  const Vec<D, Real>* reference_position;
+  Vec<D, Real>* displacement;
+  Vec<D, Real>* velocity;
+  Vec<D, Real>* acceleration;
+  const Real* volume;
+  Mat<D, Real>* deformation_gradient;
+  Mat<D, Real>* deformation_rate;
+  const Mat<D, Real>* correction;
+  Mat<D, Real>* force_stress;
+  Real* shear_coefficient;      // laplacian bodies only (else null)
+  Mat<D, Real>* shear_stress;   // genog bodies only
+  Mat<D, Real>* inverse_F;      // genog bodies, and scratch for the indicator
+  Real* hourglass_indicator;
+  Real* von_mises;
+  Real* jacobian;
+};
+
+}  // namespace mfsd

@@ -1,0 +1,121 @@
+// Cell-list neighbour search (design.md, "Neighbour search"): cell edge =
+// search radius; particles sorted by (body, cell) key; each key's [start, end)
+// found from the sorted keys; neighbours counted, scanned into CSR offsets and
+// filled. Only particles of the same body are neighbours (bodies interact by
+// contact, not through the reference list).
+#pragma once
+#include "kernels/core/vec.hpp"
+
+namespace mfsd {
+
+template <int D>
+struct CellGrid {
+  double origin[D];
+  double inv_cell_size;
+  int dims[D];
+  std::int64_t cells_per_body;
+
+  MFSD_HD int coordinate(int axis, double x) const {
+    int c = int(math::floor((x - origin[axis]) * inv_cell_size));
+    return c < 0 ? 0 : (c >= dims[axis] ? dims[axis] - 1 : c);
+  }
+  MFSD_HD std::int64_t linear(const int* c) const {
+    std::int64_t k = c[D - 1];
+    for (int a = D - 2; a >= 0; --a) k = k * dims[a] + c[a];
+    return k;
+  }
+};
+
+// key_i = body_i * cells_per_body + cell(X_i)
+template <int D>
+struct CellKeyFunctor {
+  CellGrid<D> grid;
+  const Vec<D, double>* position;
+  const int* body;
+  std::int64_t* key;
+
+  MFSD_HD void operator()(Index i) const {
+    int c[D];
+    for (int a = 0; a < D; ++a) c[a] = grid.coordinate(a, position[i].v[a]);
+    key[i] = std::int64_t(body[i]) * grid.cells_per_body + grid.linear(c);
+  }
+};
+
+// From sorted keys, the [start, end) of every occupied key (others stay 0, 0).
+struct CellRangeFunctor {
+  const std::int64_t* key;
+  Index n;
+  Index* start;
+  Index* end;
+
+  MFSD_HD void operator()(Index i) const {
+    const std::int64_t k = key[i];
+    if (i == 0 || key[i - 1] != k) start[k] = i;
+    if (i == n - 1 || key[i + 1] != k) end[k] = i + 1;
+  }
+};
+
+// Visits every j != i of the same body with |X_i - X_j| < radius; the
+// visitor receives (j, X_i - X_j, |X_i - X_j|).
+template <int D>
+struct CellNeighborhood {
+  CellGrid<D> grid;
+  const Vec<D, double>* position;
+  const int* body;
+  const Index* start;
+  const Index* end;
+  const Index* order;  // cell-sorted position -> particle index; null = identity (reordered set)
+  double radius2;
+
+  template <class Visitor>
+  MFSD_HD void for_each(Index i, Visitor& visit) const {
+    const Vec<D, double> xi = position[i];
+    int c[D], lo[D], hi[D];
+    for (int a = 0; a < D; ++a) {
+      c[a] = grid.coordinate(a, xi.v[a]);
+      lo[a] = c[a] > 0 ? c[a] - 1 : 0;
+      hi[a] = c[a] + 1 < grid.dims[a] ? c[a] + 1 : grid.dims[a] - 1;
+    }
+    const std::int64_t base = std::int64_t(body[i]) * grid.cells_per_body;
+    int cc[D];
+    if constexpr (D == 2) {
+      for (cc[1] = lo[1]; cc[1] <= hi[1]; ++cc[1])
+        for (cc[0] = lo[0]; cc[0] <= hi[0]; ++cc[0]) visit_cell(i, xi, base + grid.linear(cc), visit);
+    } else {
+      for (cc[2] = lo[2]; cc[2] <= hi[2]; ++cc[2])
+        for (cc[1] = lo[1]; cc[1] <= hi[1]; ++cc[1])
+          for (cc[0] = lo[0]; cc[0] <= hi[0]; ++cc[0]) visit_cell(i, xi, base + grid.linear(cc), visit);
+    }
+  }
+
+ private:
+  template <class Visitor>
+  MFSD_HD void visit_cell(Index i, const Vec<D, double>& xi, std::int64_t k, Visitor& visit) const {
+    for (Index s = start[k]; s < end[k]; ++s) {
+      const Index j = order ? order[s] : s;
+      if (j == i) continue;
+      const Vec<D, double> d = xi - position[j];
+      const double r2 = squared_norm(d);
+      if (r2 < radius2) visit(j, d, math::sqrt(r2));
+    }
+  }
+};
+
+struct CountVisitor {
+  Index count = 0;
+  template <class V>
+  MFSD_HD void operator()(Index, const V&, double) { ++count; }
+};
+
+template <int D>
+struct NeighborCountFunctor {
+  CellNeighborhood<D> hood;
+  Index* count;
+  MFSD_HD void operator()(Index i) const {
+    CountVisitor v;
+    hood.for_each(i, v);
+    count[i] = v.count;
+  }
+};
+
+}  // namespace mfsd

@@ -1,0 +1,47 @@
+// Kernel-gradient correction matrix, computed once in the reference
+// configuration (seed 000 eq. 21; seed 003 eq. 21):
+//   B0_i = ( sum_j V0_j (X_j - X_i) (x) grad0_i W_ij )^{-1}
+//        = ( - sum_j dwv_ij r0_ij e0_ij (x) e0_ij )^{-1}     (symmetric).
+// Near-singular cases (particles on a line, thin parts, isolated particles)
+// are regularized: the eigenvalues of the symmetric matrix are floored at
+// `eigenvalue_floor` before inversion, and the particle is flagged so that
+// the host can report how many needed it. A full lattice support gives
+// eigenvalues close to 1.
+#pragma once
+#include "kernels/core/eigen_symmetric.hpp"
+#include "kernels/tlsph/reference_pairs.hpp"
+
+namespace mfsd {
+
+template <int D, class Real>
+struct CorrectionMatrixFunctor {
+  ReferencePairs<D, Real> pairs;
+  Mat<D, Real>* correction;       // B0
+  unsigned char* regularized;     // 1 where the floor was applied
+  Real eigenvalue_floor;
+
+  MFSD_HD void operator()(Index i) const {
+    Mat<D, Real> A = Mat<D, Real>::zero();
+    for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
+      const Vec<D, Real> e = pairs.e0[p];
+      const Real w = -pairs.dwv[p] / pairs.inv_r0[p];  // V0_j |dW| r0
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) A.m[a][b] += w * e.v[a] * e.v[b];
+    }
+    const SymmetricEigen<D, Real> eig = eigen_symmetric(A);
+    Vec<D, Real> inv_lambda;
+    bool floored = false;
+    for (int k = 0; k < D; ++k) {
+      Real l = eig.values.v[k];
+      if (!(l >= eigenvalue_floor)) {  // also catches NaN
+        l = eigenvalue_floor;
+        floored = true;
+      }
+      inv_lambda.v[k] = Real(1) / l;
+    }
+    correction[i] = compose_symmetric(inv_lambda, eig.vectors);
+    regularized[i] = floored ? 1 : 0;
+  }
+};
+
+}  // namespace mfsd

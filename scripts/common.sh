@@ -1,0 +1,57 @@
+# Shared set-up for scripts/run.sh, scripts/test.sh and bench/: installs the
+# Debian packages mfsd needs (as root) or prints the exact apt command, then
+# configures and builds Release into build/. Source it; do not run it.
+
+MFSD_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+MFSD_BUILD=${MFSD_BUILD:-$MFSD_ROOT/build}
+
+mfsd_log() { printf '[mfsd] %s\n' "$*" >&2; }
+
+# Debian packages: compiler, CMake, OpenMP (libgomp comes with g++), JSON,
+# command-line parsing, GoogleTest, Google Benchmark; Thrust from Debian only
+# when no CUDA toolkit (whose CCCL provides it) is installed.
+mfsd_required_packages() {
+  local pkgs="g++ cmake make nlohmann-json3-dev libcxxopts-dev libgtest-dev libbenchmark-dev"
+  if ! command -v nvcc >/dev/null 2>&1 && [[ ! -x /usr/local/cuda/bin/nvcc ]]; then
+    pkgs="$pkgs libthrust-dev"
+  fi
+  echo "$pkgs"
+}
+
+mfsd_ensure_dependencies() {
+  local missing=()
+  for p in $(mfsd_required_packages); do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [[ ${#missing[@]} -eq 0 ]] && return 0
+  if [[ $(id -u) -eq 0 ]]; then
+    mfsd_log "installing Debian packages: ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq >/dev/null
+    apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  else
+    mfsd_log "missing Debian packages: ${missing[*]}"
+    mfsd_log "install them with:  sudo apt-get update && sudo apt-get install -y ${missing[*]}"
+    exit 1
+  fi
+}
+
+# mfsd_build [extra cmake args...]: configure (once) and build Release into $MFSD_BUILD.
+mfsd_build() {
+  if [[ -x /usr/local/cuda/bin/nvcc ]] && ! command -v nvcc >/dev/null 2>&1; then
+    export PATH=/usr/local/cuda/bin:$PATH
+  fi
+  local jobs
+  jobs=$(nproc 2>/dev/null || echo 2)
+  cmake -S "$MFSD_ROOT" -B "$MFSD_BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >"$MFSD_BUILD.configure.log" 2>&1 || {
+    cat "$MFSD_BUILD.configure.log" >&2
+    mfsd_log "CMake configuration failed (log above)"
+    exit 1
+  }
+  mfsd_log "building in $MFSD_BUILD ($(grep -o 'CUDA backend [A-Z]*' "$MFSD_BUILD.configure.log" || echo 'CUDA backend ?'))"
+  cmake --build "$MFSD_BUILD" -j "$jobs" >"$MFSD_BUILD.build.log" 2>&1 || {
+    grep -E -B2 -A6 'error' "$MFSD_BUILD.build.log" | head -80 >&2
+    mfsd_log "build failed; full log: $MFSD_BUILD.build.log"
+    exit 1
+  }
+}

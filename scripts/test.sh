@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Sets up (Debian packages, Release build into build/) and runs the tests:
+#   scripts/test.sh            unit, regression and CLI tests (label validate excluded)
+#   scripts/test.sh --all      also the long validation runs (ctest label validate)
+#   scripts/test.sh --gpu      also require the GPU tests to run (MFSD_REQUIRE_GPU=1)
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+exclude="validate"
+for arg in "$@"; do
+  case "$arg" in
+    --all) exclude="" ;;
+    --gpu) export MFSD_REQUIRE_GPU=1 ;;
+    *) mfsd_log "unknown option $arg (expected --all or --gpu)"; exit 2 ;;
+  esac
+done
+mfsd_ensure_dependencies
+start=$(date +%s)
+mfsd_build
+mfsd_log "build took $(( $(date +%s) - start )) s"
+args=(--test-dir "$MFSD_BUILD" --output-on-failure -j "$(nproc 2>/dev/null || echo 2)")
+[[ -n $exclude ]] && args+=(-LE "$exclude")
+ctest "${args[@]}"
+mfsd_log "tests passed in $(( $(date +%s) - start )) s"

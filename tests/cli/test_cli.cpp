@@ -1,0 +1,222 @@
+// The mfsd binary end to end: exit codes (0 ok, 2 bad input, 3 numerical
+// failure), one-line error messages naming the JSON path, no output folder
+// left behind on bad input, the documented output files and their columns.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string output;  // stdout + stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(MFSD_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mfsd_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // A small valid 2-D scene; `patch` edits it as JSON text replacements.
+  std::string scene(const std::string& from = "", const std::string& to = "") {
+    std::string s = R"({
+  "name": "cli_block",
+  "dimension": 2,
+  "solver": {"hourglass": "genog", "end_time": 0.002},
+  "bodies": [{
+    "name": "block", "spacing": 0.01,
+    "geometry": {"box": {"min": [0, 0], "max": [0.1, 0.05]}},
+    "material": {"model": "neo_hookean", "density": 1000, "youngs_modulus": 1e6, "poisson_ratio": 0.3},
+    "initial_velocity": {"x": "0", "y": "x0"}
+  }],
+  "clamps": [{"body": "block", "region": {"box": {"min": [0, 0], "max": [0.02, 0.05]}}}],
+  "probes": [{"name": "tip", "point": [0.1, 0.025], "fields": ["position", "von_mises"]}],
+  "output": {"interval": 0.001}
+})";
+    if (!from.empty()) {
+      const auto at = s.find(from);
+      EXPECT_NE(at, std::string::npos) << from;
+      s.replace(at, from.size(), to);
+    }
+    const fs::path f = dir_ / "scene.json";
+    std::ofstream(f) << s;
+    return f.string();
+  }
+  std::string out() const { return (dir_ / "out").string(); }
+
+  void expect_input_error(const std::string& args, const std::string& message_part) {
+    const Result r = run(args);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(message_part), std::string::npos) << "message was: " << r.output;
+    EXPECT_FALSE(fs::exists(out())) << "an output folder was left behind";
+    // One message line (plus at most the usage hint).
+    EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Cli, VersionAndHelp) {
+  const Result v = run("--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.output.find("mfsd "), std::string::npos);
+  EXPECT_NE(v.output.find("backends: cpu"), std::string::npos);
+  const Result h = run("--help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_NE(h.output.find("mfsd run"), std::string::npos);
+  EXPECT_NE(h.output.find("--set"), std::string::npos);
+  EXPECT_EQ(run("frobnicate").code, 2);
+  EXPECT_EQ(run("run --threads 0").code, 2);
+  EXPECT_EQ(run("run --backend opencl").code, 2);
+}
+
+TEST_F(Cli, RunWritesTheDocumentedOutputs) {
+  const Result r = run("run " + scene() + " -o " + out() + " --threads 2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("particle-steps/s"), std::string::npos);
+  for (const char* f : {"run.json", "timing.json", "probes.csv", "energies.csv", "snapshots.pvd"})
+    EXPECT_TRUE(fs::exists(fs::path(out()) / f)) << f;
+  std::ifstream probes(fs::path(out()) / "probes.csv");
+  std::string header;
+  std::getline(probes, header);
+  EXPECT_EQ(header, "time,tip.position.x,tip.position.y,tip.von_mises");
+  std::ifstream energies(fs::path(out()) / "energies.csv");
+  std::getline(energies, header);
+  EXPECT_EQ(header, "time,kinetic,strain,total,hourglass_max,hourglass_mean");
+  const auto timing = nlohmann::json::parse(std::ifstream(fs::path(out()) / "timing.json"));
+  for (const char* k : {"particles", "steps", "wall_seconds", "particle_steps_per_second", "stages"})
+    EXPECT_TRUE(timing.contains(k)) << k;
+  EXPECT_EQ(timing["particles"].get<long>(), 50);
+  EXPECT_GT(timing["steps"].get<long>(), 0);
+  const auto runj = nlohmann::json::parse(std::ifstream(fs::path(out()) / "run.json"));
+  EXPECT_EQ(runj["status"], "completed");
+  EXPECT_EQ(runj["threads"], 2);
+  EXPECT_EQ(runj["scene"]["solver"]["h_over_dp"], 1.15);  // defaults are resolved
+  // Snapshots at t = 0, 0.001, 0.002.
+  size_t vtu = 0;
+  for (auto& e : fs::directory_iterator(fs::path(out()) / "snapshots")) vtu += e.path().extension() == ".vtu";
+  EXPECT_EQ(vtu, 3u);
+}
+
+TEST_F(Cli, SetOverridesSceneValues) {
+  const Result r = run("run " + scene() + " -o " + out() +
+                       " -q --set solver.hourglass=laplacian --set bodies.block.material.poisson_ratio=0.4");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto runj = nlohmann::json::parse(std::ifstream(fs::path(out()) / "run.json"));
+  EXPECT_EQ(runj["scene"]["solver"]["hourglass"], "laplacian");
+  EXPECT_EQ(runj["scene"]["bodies"][0]["material"]["poisson_ratio"], 0.4);
+  fs::remove_all(out());
+  expect_input_error("run " + scene() + " -o " + out() + " --set bodies.9.spacing=1", "--set bodies.9.spacing");
+}
+
+TEST_F(Cli, CheckPrintsTheResolvedScene) {
+  const Result r = run("check " + scene());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("body 'block': 50 particles (10 clamped)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("probe 'tip'"), std::string::npos);
+}
+
+TEST_F(Cli, MalformedJsonNamesLineAndColumn) {
+  expect_input_error("run " + scene("\"dimension\": 2,", "\"dimension\": 2,,") + " -o " + out(), "scene.json:3:18: invalid JSON");
+}
+
+TEST_F(Cli, UnknownKey) {
+  expect_input_error("run " + scene("\"end_time\": 0.002", "\"end_time\": 0.002, \"ned_time\": 1") + " -o " + out(),
+                     "/solver/ned_time: got an unknown key");
+}
+
+TEST_F(Cli, WrongType) {
+  expect_input_error("run " + scene("\"spacing\": 0.01", "\"spacing\": [0.01]") + " -o " + out(),
+                     "/bodies/0/spacing: got an array");
+}
+
+TEST_F(Cli, PoissonRatioOutOfRange) {
+  expect_input_error("run " + scene("\"poisson_ratio\": 0.3", "\"poisson_ratio\": 0.5") + " -o " + out(),
+                     "/bodies/0/material/poisson_ratio: got 0.5; expected a number in (-1, 0.5)");
+}
+
+TEST_F(Cli, NonPositiveDensityAndSpacing) {
+  expect_input_error("run " + scene("\"density\": 1000", "\"density\": 0") + " -o " + out(),
+                     "/bodies/0/material/density: got 0; expected a positive number");
+  expect_input_error("run " + scene("\"spacing\": 0.01", "\"spacing\": -0.01") + " -o " + out(),
+                     "/bodies/0/spacing: got -0.01; expected a positive number");
+}
+
+TEST_F(Cli, SmoothingLengthRatioOutOfRange) {
+  expect_input_error("run " + scene("\"end_time\": 0.002", "\"end_time\": 0.002, \"h_over_dp\": 3") + " -o " + out(),
+                     "/solver/h_over_dp: got 3; expected a number in [1, 2]");
+}
+
+TEST_F(Cli, EmptyBody) {
+  expect_input_error("run " + scene("\"spacing\": 0.01", "\"spacing\": 1.0") + " -o " + out(),
+                     "/bodies/0/geometry");
+}
+
+TEST_F(Cli, ProbeOutsideEveryBody) {
+  expect_input_error("run " + scene("[0.1, 0.025]", "[0.5, 0.025]") + " -o " + out(),
+                     "/probes/0/point: got [0.5, 0.025]; expected a point inside one of the bodies");
+}
+
+TEST_F(Cli, BadExpression) {
+  expect_input_error("run " + scene("\"y\": \"x0\"", "\"y\": \"x0 +* 2\"") + " -o " + out(),
+                     "/bodies/0/initial_velocity/y");
+  expect_input_error("run " + scene("\"y\": \"x0\"", "\"y\": \"1/(x0 - 0.005)\"") + " -o " + out(),
+                     "division by zero");
+}
+
+TEST_F(Cli, UnwritableOutputFolder) {
+  const fs::path blocker = dir_ / "file";
+  std::ofstream(blocker) << "x";
+  const Result r = run("run " + scene() + " -o " + (blocker / "out").string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("output folder"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, NumericalFailureStopsWithExitCode3AndKeepsLastSnapshot) {
+  // Tight bounds: the tip leaves them after a few steps.
+  const std::string s = scene("\"output\": {\"interval\": 0.001}",
+                              "\"output\": {\"interval\": 0.0005}, \"bounds\": {\"min\": [-1, -1], \"max\": [1, 0.04501]}");
+  const Result r = run("run " + s + " -o " + out());
+  EXPECT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("position"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("of body 'block'"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(fs::path(out()) / "snapshots" / "cli_block_00000.vtu"));
+  const auto runj = nlohmann::json::parse(std::ifstream(fs::path(out()) / "run.json"));
+  EXPECT_EQ(runj["status"], "failed");
+}
+
+TEST_F(Cli, CudaBackendRefusedWithoutDevice) {
+  const Result v = run("--version");
+  if (v.output.find("cuda devices: 0") == std::string::npos && v.output.find(", cuda") != std::string::npos)
+    GTEST_SKIP() << "a CUDA device is present";
+  const Result r = run("run " + scene() + " -o " + out() + " --backend cuda");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}

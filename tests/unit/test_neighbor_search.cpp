@@ -1,0 +1,99 @@
+// Reference neighbour list (cell list + sort-based reordering + CSR) against
+// a brute-force O(N^2) oracle: same neighbour sets by particle id, same
+// per-pair data, fields carried consistently by the reordering, and no pairs
+// across bodies.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "particle_fixture.hpp"
+
+using namespace mfsd;
+
+namespace {
+
+template <int D>
+void check_against_oracle(bool reorder, double jitter) {
+  const int n[3] = {13, 9, 7};
+  const double dp = 0.1, h = 1.15 * dp;
+  auto x = test::lattice<D>(n, dp, jitter, 7);
+  // Second body: the same lattice shifted so that it overlaps the first one.
+  const size_t n0 = x.size();
+  auto x2 = test::lattice<D>(n, dp, jitter, 8);
+  for (auto& p : x2) p.v[0] += 0.35;
+  x.insert(x.end(), x2.begin(), x2.end());
+  std::vector<int> body(x.size(), 0);
+  std::fill(body.begin() + long(n0), body.end(), 1);
+
+  test::Fixture<D, double> f(x, dp, h, reorder, body, true);
+  const auto ids = f.template host<Index>(field::id);
+  const auto xs = f.template host<Vec<D, double>>(field::reference_position);
+  const auto bs = f.template host<int>(field::body);
+  const auto offsets = to_host<Cpu>(f.pairs.offsets);
+  const auto nb = to_host<Cpu>(f.pairs.neighbor);
+  const auto e0 = to_host<Cpu>(f.pairs.e0);
+  const auto dwv = to_host<Cpu>(f.pairs.dwv);
+  const auto inv_r0 = to_host<Cpu>(f.pairs.inv_r0);
+  const auto beta = to_host<Cpu>(f.pairs.beta);
+  const auto kernel = WendlandC2<D, double>::make(h);
+
+  // Fields travel together: the particle now at k is the original ids[k].
+  for (size_t k = 0; k < x.size(); ++k) {
+    for (int a = 0; a < D; ++a) EXPECT_EQ(xs[k].v[a], x[size_t(ids[k])].v[a]);
+    EXPECT_EQ(bs[k], body[size_t(ids[k])]);
+  }
+  // Bodies stay contiguous.
+  for (size_t k = 1; k < bs.size(); ++k) EXPECT_LE(bs[k - 1], bs[k]);
+  if (reorder) {
+    EXPECT_FALSE(std::is_sorted(ids.begin(), ids.end()));
+  }
+
+  size_t total = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    const size_t i = size_t(ids[k]);
+    std::set<size_t> oracle;
+    for (size_t j = 0; j < x.size(); ++j)
+      if (j != i && body[j] == body[i] && norm(x[i] - x[j]) < 2 * h) oracle.insert(j);
+    std::set<size_t> found;
+    for (auto p = offsets[k]; p < offsets[k + 1]; ++p) {
+      const size_t j = size_t(ids[size_t(nb[size_t(p)])]);
+      found.insert(j);
+      const double r = norm(x[i] - x[j]);
+      for (int a = 0; a < D; ++a) EXPECT_NEAR(e0[size_t(p)].v[a], (x[i].v[a] - x[j].v[a]) / r, 1e-14);
+      EXPECT_NEAR(dwv[size_t(p)], std::pow(dp, D) * kernel.dW(r), 1e-12);
+      EXPECT_NEAR(inv_r0[size_t(p)], 1 / r, 1e-9);
+      EXPECT_NEAR(beta[size_t(p)], kernel.W(r) / kernel.W(0), 1e-14);
+    }
+    EXPECT_EQ(found, oracle) << "particle " << i;
+    total += oracle.size();
+  }
+  EXPECT_EQ(size_t(f.pairs.pairs()), total);
+}
+
+}  // namespace
+
+TEST(NeighborSearch, MatchesOracle2DReordered) { check_against_oracle<2>(true, 0.2); }
+TEST(NeighborSearch, MatchesOracle2DNotReordered) { check_against_oracle<2>(false, 0.2); }
+TEST(NeighborSearch, MatchesOracle3DReordered) { check_against_oracle<3>(true, 0.3); }
+TEST(NeighborSearch, MatchesOracle3DNotReordered) { check_against_oracle<3>(false, 0.0); }
+
+TEST(NeighborSearch, FullSupportCountOnLattice) {
+  // Interior particle of a 3-D lattice with h = 1.15 dp (cut-off 2.3 dp):
+  // lattice points with |k| < 2.3, k != 0: 1 + 6 + 12 + 8 + 6 + 24 + 24 ... = 56.
+  const int n[3] = {9, 9, 9};
+  const auto x = test::lattice<3>(n, 1.0, 0.0, 1);
+  test::Fixture<3, double> f(x, 1.0, 1.15, true);
+  const auto ids = f.template host<Index>(field::id);
+  const auto offsets = to_host<Cpu>(f.pairs.offsets);
+  int expected = 0;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j)
+      for (int k = -2; k <= 2; ++k)
+        if ((i || j || k) && i * i + j * j + k * k < 2.3 * 2.3) ++expected;
+  for (size_t k = 0; k < ids.size(); ++k)
+    if (ids[k] == 4 + 9 * 4 + 81 * 4) {
+      EXPECT_EQ(offsets[k + 1] - offsets[k], expected);
+    }
+}
