@@ -1,6 +1,17 @@
 // Backend-generic algorithms over Thrust: parallel_for, reductions, sort,
-// gather and scans. Include after backend/cpu.hpp or backend/cuda.cuh.
+// gather and scans. The backend's BackendTraits come from backend/cpu.hpp or
+// backend/cuda.cuh (include one of them).
 #pragma once
+#include <thrust/copy.h>
+#include <thrust/count.h>
+#include <thrust/gather.h>
+#include <thrust/iterator/counting_iterator.h>
+#include <thrust/reduce.h>
+#include <thrust/scan.h>
+#include <thrust/sequence.h>
+#include <thrust/sort.h>
+#include <thrust/transform_reduce.h>
+
 #include <vector>
 
 #include "host/backend/backend.hpp"

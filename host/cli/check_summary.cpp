@@ -38,8 +38,12 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
       << ", h " << p.h << ", c0 " << p.c0 << " m/s, max initial speed " << vmax << " m/s\n";
   }
   for (size_t k = 0; k < s.probes.size(); ++k) {
-    const auto& x = P.position[size_t(P.probe_particle[k])];
-    o << "  probe '" << s.probes[k].name << "': particle " << P.probe_particle[k] << " at (" << x[0] << ", " << x[1];
+    const auto& members = P.probe_particles[k];
+    Point3 x{0, 0, 0};
+    for (long i : members)
+      for (int a = 0; a < 3; ++a) x[a] += P.position[size_t(i)][a] / double(members.size());
+    o << "  probe '" << s.probes[k].name << "': " << members.size() << " particle(s) centred at (" << x[0] << ", "
+      << x[1];
     if (s.dimension == 3) o << ", " << x[2];
     o << ")\n";
   }

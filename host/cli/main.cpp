@@ -5,6 +5,8 @@
 //   mfsd --version | --help
 // Exit codes: 0 success, 1 internal error, 2 bad input, 3 numerical failure.
 #include <cstdio>
+// --set values may hold JSON with commas: never split option values.
+#define CXXOPTS_VECTOR_DELIMITER '\0'
 #include <cxxopts.hpp>
 #include <iostream>
 #include <string>

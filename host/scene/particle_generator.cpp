@@ -130,21 +130,30 @@ InitialParticles generate_particles(const Scene& scene) {
 
   for (size_t k = 0; k < scene.probes.size(); ++k) {
     const ProbeSpec& probe = scene.probes[k];
-    long best = -1;
-    for (size_t b = 0; b < scene.bodies.size() && best < 0; ++b) {
+    const std::string path = "/probes/" + std::to_string(k);
+    std::vector<long> members;
+    bool inside = false;
+    for (size_t b = 0; b < scene.bodies.size() && !inside; ++b) {
       const double tol = 1e-9 * scene.bodies[b].spacing;
       if (!scene.bodies[b].geometry.contains(probe.point, dim, tol)) continue;
+      inside = true;
+      long best = -1;
       double best_d2 = std::numeric_limits<double>::max();
+      const double r2 = probe.radius * probe.radius * (1 + 1e-9);
       for (long i = P.body_range[b].begin; i < P.body_range[b].end; ++i) {
         double d2 = 0;
         for (int a = 0; a < dim; ++a) d2 += std::pow(P.position[size_t(i)][a] - probe.point[a], 2);
         if (d2 < best_d2) best_d2 = d2, best = i;
+        if (probe.radius > 0 && d2 <= r2) members.push_back(i);
       }
+      if (probe.radius == 0) members.push_back(best);
     }
-    if (best < 0)
-      throw SceneError("/probes/" + std::to_string(k) + "/point", point_text(probe.point, dim),
-                       "a point inside one of the bodies");
-    P.probe_particle.push_back(best);
+    if (!inside)
+      throw SceneError(path + "/point", point_text(probe.point, dim), "a point inside one of the bodies");
+    if (members.empty())
+      throw SceneError(path + "/radius", std::to_string(probe.radius),
+                       "a radius that holds at least one particle around the point");
+    P.probe_particles.push_back(members);
   }
   return P;
 }

@@ -41,6 +41,7 @@ struct ClampSpec {
 struct ProbeSpec {
   std::string name;
   Point3 point{0, 0, 0};
+  double radius = 0;                // 0: the nearest particle; > 0: mean over the particles within it
   std::vector<std::string> fields;  // position, displacement, velocity, von_mises, J
 };
 

@@ -99,7 +99,11 @@ SolverSpec read_solver(JsonNode s, int dim) {
                                                                        : Precision::double_precision;
   spec.sound_speed = s.choice("sound_speed", {"bulk", "p_wave"}, "bulk") == "bulk" ? SoundSpeed::bulk
                                                                                    : SoundSpeed::p_wave;
-  spec.correction_in_force = s.boolean("kernel_correction_in_force", true);
+  // B0 in the force sums: the papers' eq. 20/32 for none and genog. For
+  // laplacian the Laplacian shear sum has no B0, so B0 in the remaining-stress
+  // sum leaves surface particles out of equilibrium at rest (docs/theory.md);
+  // the default there is the authors' code (B0 only in dF/dt).
+  spec.correction_in_force = s.boolean("kernel_correction_in_force", spec.hourglass != HourglassControl::laplacian);
   spec.correction_floor =
       s.number("correction_floor", 0.1, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
   spec.reorder = s.boolean("reorder", true);
@@ -271,6 +275,7 @@ Scene read_scene(const Json& doc, Json& resolved) {
       throw SceneError(node.key_path("name"), "\"" + probe.name + "\"", "a name no other probe has");
     const auto x = node.vector("point", size_t(dim), Range::any());
     for (int a = 0; a < dim; ++a) probe.point[a] = x[a];
+    probe.radius = node.number("radius", 0.0, Range::non_negative());
     auto fields = node.array("fields", false);
     const std::set<std::string> allowed = {"position", "displacement", "velocity", "von_mises", "J"};
     for (size_t k = 0; k < fields.size(); ++k) {

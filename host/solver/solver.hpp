@@ -26,6 +26,7 @@ struct Snapshot {
 
 struct EnergySample {
   double kinetic = 0, strain = 0;
+  Point3 momentum{0, 0, 0};
   double hourglass_max = 0, hourglass_mean = 0;
 };
 

@@ -87,7 +87,7 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
     return transform_reduce<B>(s_.range.begin, s_.range.end,
                                EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.velocity,
                                                                 v.volume, Real(s_.density)},
-                               EnergySums{0.0, 0.0}, EnergySumsPlus{});
+                               EnergySums{0.0, 0.0, {0.0, 0.0, 0.0}}, EnergySumsPlus{});
   }
 
  private:

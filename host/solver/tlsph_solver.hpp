@@ -81,6 +81,8 @@ class TlsphSolver final : public Solver {
  public:
   TlsphSolver(const Scene& scene, const InitialParticles& init)
       : scene_(scene), init_(init), particles_(Index(init.size())) {
+    for (const auto& p : scene.probes)
+      for (const auto& f : p.fields) probes_need_stress_ = probes_need_stress_ || f == "von_mises" || f == "J";
     for (const char* name : {"half_step", "stress", "force", "velocity", "deformation_rate", "time_step"})
       timers_.id(name);
   }
@@ -135,7 +137,11 @@ class TlsphSolver final : public Solver {
     }
     from_host<B>(clamp_list, constrained_list_);
     std::vector<Index> probe_index;
-    for (long id : init_.probe_particle) probe_index.push_back(where[size_t(id)]);
+    probe_offsets_.assign(1, 0);
+    for (const auto& members : init_.probe_particles) {
+      for (long id : members) probe_index.push_back(where[size_t(id)]);
+      probe_offsets_.push_back(probe_index.size());
+    }
     from_host<B>(probe_index, probe_index_);
     probe_buffer_.resize(probe_index.size() * (3 * D + 2));
 
@@ -240,6 +246,7 @@ class TlsphSolver final : public Solver {
       const EnergySums s = k->energy(v_);
       e.kinetic += s.kinetic;
       e.strain += s.strain;
+      for (int a = 0; a < 3; ++a) e.momentum[a] += s.momentum[a];
     }
     compute_hourglass_indicator();
     const Index n = particles_.size();
@@ -251,23 +258,28 @@ class TlsphSolver final : public Solver {
     return e;
   }
 
+  // Each probe is the mean over its particles (one, or those within its radius).
   std::vector<ProbeSample> probes() override {
-    std::vector<ProbeSample> out(probe_index_.size());
+    std::vector<ProbeSample> out(probe_offsets_.size() - 1);
     if (out.empty()) return out;
-    for (auto& k : bodies_) k->stress_observables(v_);
+    if (probes_need_stress_)
+      for (auto& k : bodies_) k->stress_observables(v_);
     parallel_for<B>(Index(probe_index_.size()),
                     ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement,
                                                 v_.velocity, v_.von_mises, v_.jacobian, raw(probe_buffer_)});
     const auto h = to_host<B>(probe_buffer_);
     for (size_t k = 0; k < out.size(); ++k) {
-      const Real* o = h.data() + k * (3 * D + 2);
-      for (int a = 0; a < D; ++a) {
-        out[k].position[a] = double(o[a]);
-        out[k].displacement[a] = double(o[D + a]);
-        out[k].velocity[a] = double(o[2 * D + a]);
+      const double w = 1.0 / double(probe_offsets_[k + 1] - probe_offsets_[k]);
+      for (size_t m = probe_offsets_[k]; m < probe_offsets_[k + 1]; ++m) {
+        const Real* o = h.data() + m * (3 * D + 2);
+        for (int a = 0; a < D; ++a) {
+          out[k].position[a] += w * double(o[a]);
+          out[k].displacement[a] += w * double(o[D + a]);
+          out[k].velocity[a] += w * double(o[2 * D + a]);
+        }
+        out[k].von_mises += w * double(o[3 * D]);
+        out[k].jacobian += w * double(o[3 * D + 1]);
       }
-      out[k].von_mises = double(o[3 * D]);
-      out[k].jacobian = double(o[3 * D + 1]);
     }
     return out;
   }
@@ -458,7 +470,9 @@ class TlsphSolver final : public Solver {
   std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
   DeviceVector<B, Index> constrained_list_;
-  DeviceVector<B, Index> probe_index_;
+  DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
+  std::vector<size_t> probe_offsets_{0};
+  bool probes_need_stress_ = false;  // von_mises or J requested by a probe
   DeviceVector<B, Real> probe_buffer_;
   TlsphViews<D, Real> v_{};
   StageClock<B> clock_;

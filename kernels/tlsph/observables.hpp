@@ -34,18 +34,22 @@ struct StressObservablesFunctor {
   }
 };
 
+// Kinetic and strain energy and linear momentum of a set of particles.
 struct EnergySums {
   double kinetic;
   double strain;
+  double momentum[3];
 };
 
 struct EnergySumsPlus {
   MFSD_HD EnergySums operator()(const EnergySums& a, const EnergySums& b) const {
-    return EnergySums{a.kinetic + b.kinetic, a.strain + b.strain};
+    return EnergySums{a.kinetic + b.kinetic,
+                      a.strain + b.strain,
+                      {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]}};
   }
 };
 
-// Kinetic 1/2 m v^2 and strain energy V0 W(F) of particle i (accumulated in double).
+// Kinetic 1/2 m v^2, strain energy V0 W(F) and momentum m v of particle i (accumulated in double).
 template <int D, class Real, class Material>
 struct EnergyFunctor {
   Material material;
@@ -56,8 +60,13 @@ struct EnergyFunctor {
 
   MFSD_HD EnergySums operator()(Index i) const {
     const double V0 = double(volume[i]);
-    return EnergySums{0.5 * double(density) * V0 * double(squared_norm(velocity[i])),
-                      V0 * double(material.strain_energy_density(deformation_gradient[i]))};
+    const double m = double(density) * V0;
+    const Vec<D, Real> v = velocity[i];
+    EnergySums s{0.5 * m * double(squared_norm(v)),
+                 V0 * double(material.strain_energy_density(deformation_gradient[i])),
+                 {0.0, 0.0, 0.0}};
+    for (int a = 0; a < D; ++a) s.momentum[a] = m * double(v.v[a]);
+    return s;
   }
 };
 

@@ -131,6 +131,12 @@ TEST_F(Cli, SetOverridesSceneValues) {
   const auto runj = nlohmann::json::parse(std::ifstream(fs::path(out()) / "run.json"));
   EXPECT_EQ(runj["scene"]["solver"]["hourglass"], "laplacian");
   EXPECT_EQ(runj["scene"]["bodies"][0]["material"]["poisson_ratio"], 0.4);
+  // A JSON value with commas is one value.
+  fs::remove_all(out());
+  const Result j = run("run " + scene() + " -o " + out() + " -q --set 'solver.gravity=[0,-9.81]'");
+  ASSERT_EQ(j.code, 0) << j.output;
+  const auto runk = nlohmann::json::parse(std::ifstream(fs::path(out()) / "run.json"));
+  EXPECT_EQ(runk["scene"]["solver"]["gravity"][1], -9.81);
   fs::remove_all(out());
   expect_input_error("run " + scene() + " -o " + out() + " --set bodies.9.spacing=1", "--set bodies.9.spacing");
 }

@@ -18,8 +18,10 @@ struct Trace {
   SetupReport setup;
 };
 
+// `name` is a file of configs/, or of tests/regression/scenes/ when it starts with "scenes/".
 inline SceneDocument load_config(const std::string& name, const std::vector<std::string>& overrides) {
-  return load_scene_file(std::string(MFSD_SOURCE_DIR) + "/configs/" + name, overrides);
+  const std::string dir = name.rfind("scenes/", 0) == 0 ? "/tests/regression/" : "/configs/";
+  return load_scene_file(std::string(MFSD_SOURCE_DIR) + dir + name, overrides);
 }
 
 // Runs to the scene's end time (or max_steps); samples probes every step.

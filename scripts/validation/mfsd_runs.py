@@ -1,0 +1,83 @@
+"""Helpers for validation scripts: run the mfsd binary with --set overrides,
+read its CSV outputs, and measure oscillation periods."""
+import csv
+import json
+import os
+import subprocess
+import sys
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+BINARY = os.environ.get("MFSD_BINARY", os.path.join(ROOT, "build", "mfsd"))
+
+
+def run(config, sets, outdir, extra=(), quiet=True):
+    """Runs `mfsd run config --set k=v ... -o outdir`; returns the exit code."""
+    cmd = [BINARY, "run", os.path.join(ROOT, config), "-o", outdir]
+    for k, v in sets.items():
+        cmd += ["--set", f"{k}={v}"]
+    cmd += list(extra)
+    if quiet:
+        cmd.append("-q")
+    print("+", " ".join(cmd), file=sys.stderr, flush=True)
+    return subprocess.run(cmd).returncode
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0].keys()} if rows else {}
+
+
+def read_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def crossings(t, y):
+    """Times where y(t) crosses y(0), by linear interpolation; t(0) first."""
+    y0 = y[0]
+    out = [t[0]]
+    for i in range(2, len(t)):
+        a, b = y[i - 1] - y0, y[i] - y0
+        if a != 0 and a * b <= 0:
+            out.append(t[i - 1] + (t[i] - t[i - 1]) * a / (a - b))
+    return out
+
+
+def period(t, y):
+    """Least-squares fit t_k = t_0 + k T/2 over all crossings of y(0)."""
+    c = crossings(t, y)
+    n = len(c)
+    if n < 3:
+        return float("nan")
+    k = list(range(n))
+    sk, st = sum(k), sum(c)
+    skk = sum(i * i for i in k)
+    skt = sum(i * ti for i, ti in zip(k, c))
+    return 2 * (n * skt - sk * st) / (n * skk - sk * sk)
+
+
+def first_period(t, y):
+    """Time of the second crossing after the start (one full oscillation)."""
+    c = crossings(t, y)
+    return c[2] - c[0] if len(c) > 2 else float("nan")
+
+
+def machine():
+    """Where a study ran: CPU model, cores, load (stated in every result file)."""
+    info = {"cpu": "unknown", "cores": os.cpu_count()}
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    info["cpu"] = line.split(":", 1)[1].strip()
+                    break
+        info["load_average"] = list(os.getloadavg())
+    except OSError:
+        pass
+    try:
+        info["git_commit"] = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                                            capture_output=True, text=True).stdout.strip()
+    except OSError:
+        pass
+    return info

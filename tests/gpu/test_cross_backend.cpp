@@ -1,0 +1,71 @@
+// The same scene on the cpu and cuda backends agrees to round-off (design.md:
+// "the most important GPU test"). Skips without a CUDA device unless
+// MFSD_REQUIRE_GPU=1 (scripts/test.sh --gpu), which turns the skip into a failure.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "host/scene/particle_generator.hpp"
+#include "host/scene/scene_reader.hpp"
+#include "host/solver/solver.hpp"
+
+using namespace mfsd;
+
+namespace {
+
+bool gpu_required() {
+  const char* v = std::getenv("MFSD_REQUIRE_GPU");
+  return v && std::string(v) == "1";
+}
+
+#define MFSD_REQUIRE_CUDA_DEVICE()                                                              \
+  do {                                                                                          \
+    if (!cuda_compiled() || cuda_device_count() == 0) {                                         \
+      if (gpu_required()) FAIL() << "MFSD_REQUIRE_GPU=1 but no usable CUDA device: "            \
+                                 << cuda_device_name();                                         \
+      GTEST_SKIP() << "no CUDA device (" << cuda_device_name() << ")";                          \
+    }                                                                                           \
+  } while (0)
+
+std::vector<ProbeSample> run(const std::string& config, const std::vector<std::string>& sets,
+                             const std::string& backend, Precision precision, long steps) {
+  const SceneDocument doc = load_scene_file(std::string(MFSD_SOURCE_DIR) + "/configs/" + config, sets);
+  const InitialParticles particles = generate_particles(doc.scene);
+  SolverOptions o;
+  o.backend = backend;
+  o.precision = precision;
+  auto solver = make_solver(doc.scene, particles, o);
+  solver->initialize();
+  for (long s = 0; s < steps; ++s) solver->step();
+  return solver->probes();
+}
+
+void compare(const std::string& config, const std::vector<std::string>& sets, Precision precision, double tol) {
+  const auto cpu = run(config, sets, "cpu", precision, 300);
+  const auto gpu = run(config, sets, "cuda", precision, 300);
+  ASSERT_EQ(cpu.size(), gpu.size());
+  for (size_t k = 0; k < cpu.size(); ++k)
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(cpu[k].displacement[a], gpu[k].displacement[a], tol * (1e-3 + std::abs(cpu[k].displacement[a])));
+      EXPECT_NEAR(cpu[k].velocity[a], gpu[k].velocity[a], tol * (1e-3 + std::abs(cpu[k].velocity[a])));
+    }
+}
+
+}  // namespace
+
+TEST(CrossBackend, OscillatingPlateDouble) {
+  MFSD_REQUIRE_CUDA_DEVICE();
+  for (const char* hg : {"none", "laplacian", "genog"})
+    compare("oscillating_plate_2d.json", {std::string("solver.hourglass=") + hg}, Precision::double_precision, 1e-9);
+}
+
+TEST(CrossBackend, TwistingColumnDouble) {
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("twisting_column_3d.json", {"constants.H_over_dp=4"}, Precision::double_precision, 1e-9);
+}
+
+TEST(CrossBackend, BendingColumnFloat) {
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("bending_column_3d.json", {"constants.H_over_dp=4"}, Precision::single_precision, 1e-3);
+}

@@ -1,0 +1,91 @@
+// The CPU backend's algorithms against std:: references, with 1 and 2 threads.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "host/backend/algorithms.hpp"
+#include "host/backend/cpu.hpp"
+
+using namespace mfsd;
+
+namespace {
+struct Square {
+  const double* x;
+  double operator()(Index i) const { return x[i] * x[i]; }
+};
+struct Max {
+  double operator()(double a, double b) const { return std::max(a, b); }
+};
+struct Plus {
+  double operator()(double a, double b) const { return a + b; }
+};
+struct Write {
+  Index* out;
+  void operator()(Index i) const { out[i] = 3 * i; }
+};
+}  // namespace
+
+class CpuBackend : public ::testing::TestWithParam<int> {
+ protected:
+  void SetUp() override { omp_set_num_threads(GetParam()); }
+};
+
+TEST_P(CpuBackend, ParallelForVisitsEveryIndexOnce) {
+  DeviceVector<Cpu, Index> v(1000, -1);
+  parallel_for<Cpu>(Index(10), Index(1000), Write{raw(v)});
+  const auto h = to_host<Cpu>(v);
+  for (Index i = 0; i < 1000; ++i) EXPECT_EQ(h[size_t(i)], i < 10 ? -1 : 3 * i);
+}
+
+TEST_P(CpuBackend, ReductionsMatchStd) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> x(10007);
+  for (auto& e : x) e = u(rng);
+  DeviceVector<Cpu, double> d;
+  from_host<Cpu>(x, d);
+  double ref_sum = 0, ref_max = 0;
+  for (double e : x) ref_sum += e * e, ref_max = std::max(ref_max, e * e);
+  EXPECT_NEAR(transform_reduce<Cpu>(0, Index(x.size()), Square{raw(d)}, 0.0, Plus{}), ref_sum, 1e-9);
+  EXPECT_EQ(transform_reduce<Cpu>(0, Index(x.size()), Square{raw(d)}, 0.0, Max{}), ref_max);
+  EXPECT_EQ(transform_reduce<Cpu>(5, Index(5), Square{raw(d)}, 7.0, Max{}), 7.0);  // empty range
+}
+
+TEST_P(CpuBackend, SortGatherAndScan) {
+  std::vector<std::int64_t> keys(5000);
+  std::mt19937 rng(9);
+  for (auto& k : keys) k = std::int64_t(rng() % 300);
+  DeviceVector<Cpu, std::int64_t> dk;
+  from_host<Cpu>(keys, dk);
+  DeviceVector<Cpu, Index> perm(keys.size());
+  sequence<Cpu, Index>(perm);
+  sort_by_key<Cpu, std::int64_t, Index>(dk, perm);
+  const auto sk = to_host<Cpu>(dk);
+  const auto p = to_host<Cpu>(perm);
+  EXPECT_TRUE(std::is_sorted(sk.begin(), sk.end()));
+  for (size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(sk[i], keys[size_t(p[i])]);
+  // gather puts the original keys in sorted order.
+  DeviceVector<Cpu, std::int64_t> original, gathered(keys.size());
+  from_host<Cpu>(keys, original);
+  gather<Cpu, std::int64_t>(perm, original, gathered);
+  EXPECT_EQ(to_host<Cpu>(gathered), sk);
+  // exclusive scan with a wider output type, and its total.
+  std::vector<Index> counts(keys.size());
+  for (size_t i = 0; i < counts.size(); ++i) counts[i] = Index(keys[i]);
+  DeviceVector<Cpu, Index> dc;
+  from_host<Cpu>(counts, dc);
+  DeviceVector<Cpu, PairIndex> offsets(counts.size() + 1);
+  const PairIndex total = exclusive_scan<Cpu, Index, PairIndex>(dc, offsets);
+  const auto o = to_host<Cpu>(offsets);
+  PairIndex run = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    EXPECT_EQ(o[i], run);
+    run += counts[i];
+  }
+  EXPECT_EQ(total, run);
+}
+
+INSTANTIATE_TEST_SUITE_P(Threads, CpuBackend, ::testing::Values(1, 2));
