@@ -11,6 +11,15 @@
 using namespace mfsd;
 using test::run_config;
 
+namespace {
+std::string param_name(const ::testing::TestParamInfo<std::tuple<std::string, std::string>>& info) {
+  std::string scene = std::get<0>(info.param);
+  scene = scene.substr(scene.find('/') + 1);
+  scene = scene.substr(0, scene.find('.'));
+  return scene + "_" + std::get<1>(info.param);
+}
+}  // namespace
+
 class AtRest : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 // With the default force sums every variant leaves a body at rest untouched.
@@ -27,7 +36,8 @@ TEST_P(AtRest, BodyStaysAtRest) {
 }
 INSTANTIATE_TEST_SUITE_P(Variants, AtRest,
                          ::testing::Combine(::testing::Values("scenes/free_block_2d.json", "scenes/free_block_3d.json"),
-                                            ::testing::Values("none", "laplacian", "genog")));
+                                            ::testing::Values("none", "laplacian", "genog")),
+                         param_name);
 
 // The papers' Laplacian form with B0 also in the remaining-stress sum (seed 003
 // eq. 20 with eq. 28) is not in equilibrium at rest: B0 differs from I at the
@@ -83,4 +93,5 @@ TEST_P(FreeBody, ConservesMomentumAndEnergy) {
 }
 INSTANTIATE_TEST_SUITE_P(Variants, FreeBody,
                          ::testing::Combine(::testing::Values("scenes/free_block_2d.json", "scenes/free_block_3d.json"),
-                                            ::testing::Values("none", "laplacian", "genog")));
+                                            ::testing::Values("none", "laplacian", "genog")),
+                         param_name);
