@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Bending and twisting columns 3D (seed 000 sections 5.2-5.3, seed 003 sections 4.4-4.5).
 
-  bending   H/dp = 6 and 12 to 3 s (genog; laplacian and none at 12 for
-            comparison): z(t) of point S (centre of the top face, mean of the
-            particles within dp of it). Hard case v0 = 20 m/s (genog and none).
-  twisting  Omega0 = 105 (nu = 0.499) and 300 (nu = 0.49), H/dp = 10, to 0.5 s,
-            genog, laplacian and none: hourglass indicator over time and the
-            final particle configuration.
+  bending   H/dp = 4, 6, 12 to 3 s (genog; laplacian and none at 6 and 12):
+            z(t) of point S (centre of the top face, mean of the particles
+            within dp of it) and its first minimum. Hard case v0 = 20 m/s
+            (genog and none, H/dp = 6 and 12).
+  twisting  Omega0 = 105 (nu = 0.499) and 300 (nu = 0.49), H/dp = 4, 6, 10, to
+            0.5 s, genog, laplacian and none: hourglass indicator over time and
+            the final particle configuration (plots at H/dp = 10); and the
+            energy kept by the isotropic and split damping forms (H/dp = 6).
 
 Writes docs/validation/<study>_column.json and PNG plots.
 Usage: scripts/validation/columns.py bending|twisting [--threads N] [--quick]
@@ -40,11 +42,17 @@ def run(config, name, sets, threads):
 
 def summary(r):
     e = r["energies"]
-    return {k: r[k] for k in ("name", "exit_code", "status", "particles", "steps", "simulated_time",
-                              "particle_steps_per_second", "sets")} | {
+    s = {k: r[k] for k in ("name", "exit_code", "status", "particles", "steps", "simulated_time",
+                           "particle_steps_per_second", "sets")} | {
         "hourglass_max_final": e["hourglass_max"][-1], "hourglass_mean_final": e["hourglass_mean"][-1],
         "hourglass_mean_peak": max(e["hourglass_mean"]), "total_energy_initial": e["total"][0],
         "total_energy_final": e["total"][-1]}
+    p = r["probes"]
+    if "S.position.z" in p:  # bending: first minimum of z(S) before 0.8 s
+        k = min((i for i, t in enumerate(p["time"]) if t < 0.8), key=lambda i: p["S.position.z"][i])
+        s["first_minimum_z"] = p["S.position.z"][k]
+        s["first_minimum_t"] = p["time"][k]
+    return s
 
 
 def plt_setup():
@@ -77,23 +85,28 @@ def save(study, payload):
 
 def bending(threads, quick):
     cfg = "configs/bending_column_3d.json"
-    res = [4, 6] if quick else [6, 12]
+    res = [4, 6] if quick else [4, 6, 12]
     runs = []
     for hdp in res:
         runs.append(run(cfg, f"bending_genog_H{hdp}", {"constants.H_over_dp": hdp, "output.interval": 0.1}, threads))
-    top = res[-1]
-    for hg in ("laplacian", "none"):
-        runs.append(run(cfg, f"bending_{hg}_H{top}", {"constants.H_over_dp": top, "solver.hourglass": hg,
-                                                       "output.interval": 0.1}, threads))
+    for hdp in res[-2:]:
+        for hg in ("laplacian", "none"):
+            runs.append(run(cfg, f"bending_{hg}_H{hdp}", {"constants.H_over_dp": hdp, "solver.hourglass": hg,
+                                                           "output.interval": 0.1}, threads))
     hard = []
-    for hg in ("genog", "none"):
-        hard.append(run(cfg, f"bending_hard_{hg}_H{top}", {"constants.H_over_dp": top, "solver.hourglass": hg,
-                                                            "constants.v0": 20, "output.interval": 0.05}, threads))
+    for hdp in res[-2:]:
+        for hg in ("genog", "none"):
+            hard.append(run(cfg, f"bending_hard_{hg}_H{hdp}", {"constants.H_over_dp": hdp, "solver.hourglass": hg,
+                                                                "constants.v0": 20, "output.interval": 0.05},
+                            threads))
+    top = res[-1]
+    shown = [r for r in runs if r["name"].endswith(f"_H{top}") or r["name"] == f"bending_genog_H{res[-2]}"]
+    hard_top = [r for r in hard if r["name"].endswith(f"_H{top}")]
     save("bending", {"command": "scripts/validation/columns.py bending", "machine": m.machine(),
                      "runs": [summary(r) for r in runs + hard]})
     plt = plt_setup()
     fig, ax = plt.subplots(figsize=(7, 4))
-    for r in runs:
+    for r in shown:
         ax.plot(r["probes"]["time"], r["probes"]["S.position.z"], label=r["name"].replace("bending_", ""))
     ax.set_xlabel("t [s]")
     ax.set_ylabel("z of S [m]")
@@ -103,10 +116,10 @@ def bending(threads, quick):
     fig.tight_layout()
     fig.savefig(os.path.join(DOCS, "bending_column_z.png"), dpi=120)
     fig = plt.figure(figsize=(11, 4.5))
-    for k, r in enumerate(hard):
+    for k, r in enumerate(hard_top):
         snapshot_axes(fig, (1, 3, k + 1), r, f"v0 = 20 m/s, {r['name'].split('_')[2]}, t = {r['simulated_time']:.2f} s")
     ax = fig.add_subplot(1, 3, 3)
-    for r in hard:
+    for r in hard_top:
         ax.plot(r["energies"]["time"], r["energies"]["hourglass_mean"], label=r["name"].split("_")[2])
     ax.set_xlabel("t [s]")
     ax.set_ylabel("mean hourglass indicator")
@@ -118,16 +131,22 @@ def bending(threads, quick):
 
 def twisting(threads, quick):
     cfg = "configs/twisting_column_3d.json"
-    hdp = 6 if quick else 10
+    resolutions = [4, 6] if quick else [4, 6, 10]
+    hdp = resolutions[-1]
     runs = []
-    for omega, nu in ((105, 0.499), (300, 0.49)):
-        for hg in ("genog", "laplacian", "none"):
-            runs.append(run(cfg, f"twisting_{omega}_{hg}_H{hdp}",
-                            {"constants.H_over_dp": hdp, "constants.Omega0": omega,
-                             "bodies.column.material.poisson_ratio": nu, "solver.hourglass": hg,
-                             "output.interval": 0.01}, threads))
+    for res in resolutions:
+        for omega, nu in ((105, 0.499), (300, 0.49)):
+            for hg in ("genog", "laplacian", "none"):
+                runs.append(run(cfg, f"twisting_{omega}_{hg}_H{res}",
+                                {"constants.H_over_dp": res, "constants.Omega0": omega,
+                                 "bodies.column.material.poisson_ratio": nu, "solver.hourglass": hg,
+                                 "output.interval": 0.01, "output.vtu": "true" if res == hdp else "false"}, threads))
+    damping = [run(cfg, f"twisting_105_genog_H6_damping_{form}",
+                   {"constants.H_over_dp": 6, "solver.damping.form": form, "output.vtu": "false"}, threads)
+               for form in ("isotropic", "split")]
     save("twisting", {"command": "scripts/validation/columns.py twisting", "machine": m.machine(),
-                      "runs": [summary(r) for r in runs]})
+                      "runs": [summary(r) for r in runs], "damping": [summary(r) for r in damping]})
+    runs = [r for r in runs if r["name"].endswith(f"_H{hdp}")]
     plt = plt_setup()
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     for ax, omega in zip(axes, (105, 300)):

@@ -8,6 +8,24 @@ import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 BINARY = os.environ.get("MFSD_BINARY", os.path.join(ROOT, "build", "mfsd"))
+PYTHON_PACKAGES = {"numpy": "numpy", "matplotlib": "matplotlib"}
+
+
+def ensure_python_packages():
+    """Installs the plotting/analysis packages with pip when they are missing,
+    so a fresh machine runs the studies without manual set-up."""
+    import importlib.util
+    missing = [pkg for mod, pkg in PYTHON_PACKAGES.items() if importlib.util.find_spec(mod) is None]
+    if not missing:
+        return
+    print("[mfsd] installing Python packages: " + " ".join(missing), file=sys.stderr, flush=True)
+    rc = subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", *missing]).returncode
+    if rc != 0:
+        sys.exit(f"[mfsd] pip could not install {' '.join(missing)}; run: "
+                 f"{sys.executable} -m pip install {' '.join(missing)}")
+
+
+ensure_python_packages()
 
 
 def run(config, sets, outdir, extra=(), quiet=True):
