@@ -18,14 +18,15 @@ template <class B, int D, class Real>
 struct ReferenceNeighborList {
   DeviceVector<B, PairIndex> offsets;
   DeviceVector<B, Index> neighbor;
-  DeviceVector<B, Vec<D, Real>> e0;
-  DeviceVector<B, Real> dwv, inv_r0, beta;
+  DeviceVector<B, Vec<D, Real>> grad;
+  DeviceVector<B, Real> stretch, beta;
+  DeviceVector<B, Vec<D, Real>> gradient_sum;  // per particle
 
   PairIndex pairs() const { return PairIndex(neighbor.size()); }
 
   ReferencePairs<D, Real> view() const {
-    return ReferencePairs<D, Real>{raw(offsets), raw(neighbor), raw(e0), raw(dwv), raw(inv_r0),
-                                   beta.empty() ? nullptr : raw(beta)};
+    return ReferencePairs<D, Real>{raw(offsets),      raw(neighbor), raw(grad), raw(stretch),
+                                   raw(gradient_sum), beta.empty() ? nullptr : raw(beta)};
   }
 };
 
@@ -96,9 +97,9 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
   const PairIndex total = exclusive_scan<B, Index, PairIndex>(count, list.offsets);
   list.offsets[size_t(n)] = total;
   list.neighbor.resize(size_t(total));
-  list.e0.resize(size_t(total));
-  list.dwv.resize(size_t(total));
-  list.inv_r0.resize(size_t(total));
+  list.grad.resize(size_t(total));
+  list.stretch.resize(size_t(total));
+  list.gradient_sum.resize(size_t(n));
   if (with_beta) list.beta.resize(size_t(total));
   for (const auto& b : bodies) {
     hood.radius2 = std::pow(2.0 * b.smoothing_length, 2);
@@ -107,9 +108,9 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
                                            particles.template get<Real>(field::volume),
                                            raw(list.offsets),
                                            raw(list.neighbor),
-                                           raw(list.e0),
-                                           raw(list.dwv),
-                                           raw(list.inv_r0),
+                                           raw(list.grad),
+                                           raw(list.stretch),
+                                           raw(list.gradient_sum),
                                            with_beta ? raw(list.beta) : nullptr};
     parallel_for<B>(b.range.begin, b.range.end, fill);
   }

@@ -23,8 +23,10 @@ template <class B, int D, class Real>
 class BodyKernels {
  public:
   virtual ~BodyKernels() = default;
-  virtual void stress(const TlsphViews<D, Real>& v) const = 0;
-  virtual void acceleration(const TlsphViews<D, Real>& v) const = 0;
+  // First half step (F, u to t + dt/2) and stress; half_dt = 0 only evaluates.
+  virtual void stress(const TlsphViews<D, Real>& v, Real half_dt) const = 0;
+  // Acceleration and velocity update v += dt a; dt = 0 only evaluates.
+  virtual void acceleration(const TlsphViews<D, Real>& v, Real dt) const = 0;
   virtual void stress_observables(const TlsphViews<D, Real>& v) const = 0;
   virtual EnergySums energy(const TlsphViews<D, Real>& v) const = 0;
 };
@@ -46,12 +48,15 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
  public:
   BodyKernelsImpl(const Material& m, const BodyKernelSettings& s) : material_(m), s_(s) {}
 
-  void stress(const TlsphViews<D, Real>& v) const override {
+  void stress(const TlsphViews<D, Real>& v, Real half_dt) const override {
     StressFunctor<D, Real, Material, Hourglass> f{material_,
                                                   {Real(s_.damping_normal), Real(s_.damping_shear)},
                                                   Real(s_.zeta),
                                                   s_.correction_in_force,
+                                                  half_dt,
                                                   v.deformation_gradient,
+                                                  v.displacement,
+                                                  v.velocity,
                                                   v.deformation_rate,
                                                   v.correction,
                                                   v.force_stress,
@@ -61,7 +66,7 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
-  void acceleration(const TlsphViews<D, Real>& v) const override {
+  void acceleration(const TlsphViews<D, Real>& v, Real dt) const override {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
     AccelerationFunctor<D, Real, Hourglass> f{v.pairs,
@@ -73,7 +78,9 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
                                               Real(1.0 / s_.density),
                                               g,
                                               GenogWeight<Real>{s_.genog_limiter, Real(s_.genog_alpha * D)},
-                                              v.acceleration};
+                                              dt,
+                                              v.acceleration,
+                                              v.velocity};
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 

@@ -1,12 +1,15 @@
 // Total-Lagrangian SPH solver for one backend, precision and dimension.
-// A step is the position-based Verlet pipeline of seed 000 eq. 35-38:
-//   half_step        F, u to t + dt/2                       (eq. 35)
-//   stress           per body, material x hourglass variant  (eq. 3, 7, 25-28)
-//   force            per body, gathered pair sums            (eq. 20, 27, 32)
-//   velocity         v to t + dt, clamps                     (eq. 36)
-//   deformation_rate dF/dt at the new velocity               (eq. 22)
-//   half_step        F, u to t + dt                          (eq. 37)
-//   time_step        max |v|, max |a|, health; next dt       (eq. 38)
+// A step is the position-based Verlet pipeline of seed 000 eq. 35-38 in three
+// passes over the particles plus the clamps, each stage fused so that a
+// particle's fields are read once per pass:
+//   stress           per body: F, u to t + dt/2 (eq. 35), then the material x
+//                    hourglass variant matrices            (eq. 3, 7, 25-28)
+//   force            per body: gathered pair sums (eq. 20, 27, 32), then
+//                    v to t + dt                           (eq. 36)
+//   boundary         clamps
+//   deformation_rate dF/dt at the new velocity (eq. 22), F, u to t + dt
+//                    (eq. 37), reduced to max |v|, max |a| and health
+//   time_step        next dt on the host                   (eq. 38)
 // Each stage is timed on its own. Include after the backend header.
 #pragma once
 #include <algorithm>
@@ -83,7 +86,7 @@ class TlsphSolver final : public Solver {
       : scene_(scene), init_(init), particles_(Index(init.size())) {
     for (const auto& p : scene.probes)
       for (const auto& f : p.fields) probes_need_stress_ = probes_need_stress_ || f == "von_mises" || f == "J";
-    for (const char* name : {"half_step", "stress", "force", "velocity", "deformation_rate", "time_step"})
+    for (const char* name : {"stress", "force", "boundary", "deformation_rate", "time_step"})
       timers_.id(name);
   }
 
@@ -147,8 +150,8 @@ class TlsphSolver final : public Solver {
 
     // Initial rates and forces, so that the first time step sees them.
     parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
-    for (auto& k : bodies_) k->stress(v_);
-    for (auto& k : bodies_) k->acceleration(v_);
+    for (auto& k : bodies_) k->stress(v_, Real(0));
+    for (auto& k : bodies_) k->acceleration(v_, Real(0));
     update_time_step(statistics());
 
     // Set-up report.
@@ -174,35 +177,29 @@ class TlsphSolver final : public Solver {
     const Index n = particles_.size();
     const double dt = dt_next_;
     const Real half_dt = Real(0.5 * dt);
-    run("half_step", [&] {
-      parallel_for<B>(n, HalfStepFunctor<D, Real>{v_.deformation_gradient, v_.deformation_rate, v_.displacement,
-                                                  v_.velocity, half_dt});
-    });
     run("stress", [&] {
-      for (auto& k : bodies_) k->stress(v_);
+      for (auto& k : bodies_) k->stress(v_, half_dt);
     });
     run("force", [&] {
-      for (auto& k : bodies_) k->acceleration(v_);
+      for (auto& k : bodies_) k->acceleration(v_, Real(dt));
     });
-    run("velocity", [&] {
-      parallel_for<B>(n, VelocityUpdateFunctor<D, Real>{v_.velocity, v_.acceleration, Real(dt)});
+    run("boundary", [&] {
       parallel_for<B>(Index(constrained_list_.size()),
                       ClampFunctor<D, Real>{raw(constrained_list_), v_.displacement, v_.velocity});
     });
-    run("deformation_rate", [&] {
-      parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
-    });
-    run("half_step", [&] {
-      parallel_for<B>(n, HalfStepFunctor<D, Real>{v_.deformation_gradient, v_.deformation_rate, v_.displacement,
-                                                  v_.velocity, half_dt});
-    });
     StepStatistics<Real> stats;
-    run("time_step", [&] { stats = statistics(); });
+    run("deformation_rate", [&] {
+      RateHalfStepFunctor<D, Real> f{v_.pairs,        v_.velocity, v_.correction, v_.deformation_rate,
+                                     v_.deformation_gradient, v_.displacement, half_dt, statistics_functor()};
+      stats = transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), n}, StepStatisticsCombine<Real>{});
+    });
+    run("time_step", [&] {
+      time_ += dt;
+      ++steps_;
+      if (stats.first_bad < n) fail(stats.first_bad);
+      update_time_step(stats);
+    });
     clock_.collect(timers_);
-    time_ += dt;
-    ++steps_;
-    if (stats.first_bad < n) fail(stats.first_bad);
-    update_time_step(stats);
   }
 
   void limit_next_dt(double dt_max) override { dt_next_ = std::min(dt_next_, dt_max); }
@@ -390,14 +387,20 @@ class TlsphSolver final : public Solver {
     throw std::logic_error("unknown hourglass variant");
   }
 
-  StepStatistics<Real> statistics() {
+  StepStatisticsFunctor<D, Real> statistics_functor() const {
     const Index n = particles_.size();
     StepStatisticsFunctor<D, Real> f{v_.reference_position, v_.displacement, v_.velocity, v_.acceleration, {}, {}, n};
     for (int a = 0; a < D; ++a) {
       f.lower.v[a] = Real(scene_.bounds.min[a]);
       f.upper.v[a] = Real(scene_.bounds.max[a]);
     }
-    return transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), n}, StepStatisticsCombine<Real>{});
+    return f;
+  }
+
+  StepStatistics<Real> statistics() {
+    const Index n = particles_.size();
+    return transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), n},
+                               StepStatisticsCombine<Real>{});
   }
 
   // dt = CFL min(h/(c0 + |v|max), sqrt(h/|a|max)) (seed 000 eq. 38).

@@ -1,7 +1,8 @@
 // Kernel-gradient correction matrix, computed once in the reference
 // configuration (seed 000 eq. 21; seed 003 eq. 21):
 //   B0_i = ( sum_j V0_j (X_j - X_i) (x) grad0_i W_ij )^{-1}
-//        = ( - sum_j dwv_ij r0_ij e0_ij (x) e0_ij )^{-1}     (symmetric).
+//        = ( - sum_j grad_ij (x) grad_ij / stretch_ij )^{-1}   (symmetric,
+// since V0_j (X_j - X_i) = -grad_ij / stretch_ij, reference_pairs.hpp).
 // Near-singular cases (particles on a line, thin parts, isolated particles)
 // are regularized: the eigenvalues of the symmetric matrix are floored at
 // `eigenvalue_floor` before inversion, and the particle is flagged so that
@@ -23,10 +24,11 @@ struct CorrectionMatrixFunctor {
   MFSD_HD void operator()(Index i) const {
     Mat<D, Real> A = Mat<D, Real>::zero();
     for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
-      const Vec<D, Real> e = pairs.e0[p];
-      const Real w = -pairs.dwv[p] / pairs.inv_r0[p];  // V0_j |dW| r0
+      const Vec<D, Real> g = pairs.grad[p];
+      if (pairs.stretch[p] == Real(0)) continue;  // dW = 0 at the support edge
+      const Real w = -Real(1) / pairs.stretch[p];  // r0 / (V0_j |dW|)
       for (int a = 0; a < D; ++a)
-        for (int b = 0; b < D; ++b) A.m[a][b] += w * e.v[a] * e.v[b];
+        for (int b = 0; b < D; ++b) A.m[a][b] += w * g.v[a] * g.v[b];
     }
     const SymmetricEigen<D, Real> eig = eigen_symmetric(A);
     Vec<D, Real> inv_lambda;

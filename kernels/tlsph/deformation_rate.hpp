@@ -1,11 +1,29 @@
 // Rate of the deformation gradient (seed 000 eq. 22; seed 003 eq. 22):
-//   dF_i/dt = sum_j V0_j (v_j - v_i) (x) grad0_i W_ij  B0_i.
+//   dF_i/dt = sum_j V0_j (v_j - v_i) (x) grad0_i W_ij  B0_i
+//           = (sum_j v_j (x) g_ij - v_i (x) G_i) B0_i      (reference_pairs.hpp).
 // Exact for linear velocity fields (v = L X gives dF/dt = L).
 #pragma once
 #include "kernels/core/mat.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
+#include "kernels/tlsph/step_statistics.hpp"
 
 namespace mfsd {
+
+template <int D, class Real>
+MFSD_HD inline Mat<D, Real> deformation_rate(const ReferencePairs<D, Real>& pairs, const Vec<D, Real>* velocity,
+                                             const Mat<D, Real>& B0, Index i) {
+  Mat<D, Real> sum = Mat<D, Real>::zero();
+  for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
+    const Vec<D, Real> vj = velocity[pairs.neighbor[p]];
+    const Vec<D, Real> g = pairs.grad[p];
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) sum.m[a][b] += vj.v[a] * g.v[b];
+  }
+  const Vec<D, Real> vi = velocity[i], G = pairs.gradient_sum[i];
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b) sum.m[a][b] -= vi.v[a] * G.v[b];
+  return sum * B0;
+}
 
 template <int D, class Real>
 struct DeformationRateFunctor {
@@ -14,16 +32,29 @@ struct DeformationRateFunctor {
   const Mat<D, Real>* correction;  // B0
   Mat<D, Real>* rate;              // dF/dt
 
-  MFSD_HD void operator()(Index i) const {
-    const Vec<D, Real> vi = velocity[i];
-    Mat<D, Real> sum = Mat<D, Real>::zero();
-    for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
-      const Vec<D, Real> dv = velocity[pairs.neighbor[p]] - vi;
-      const Vec<D, Real> g = pairs.e0[p] * pairs.dwv[p];  // V0_j grad0_i W_ij
-      for (int a = 0; a < D; ++a)
-        for (int b = 0; b < D; ++b) sum.m[a][b] += dv.v[a] * g.v[b];
-    }
-    rate[i] = sum * correction[i];
+  MFSD_HD void operator()(Index i) const { rate[i] = deformation_rate(pairs, velocity, correction[i], i); }
+};
+
+// The step's last pass, one read of every particle: dF/dt at the new velocity,
+// the second half step F += dt/2 dF/dt, u += dt/2 v (seed 000 eq. 37), and the
+// time-step statistics of the new state (step_statistics.hpp), reduced.
+template <int D, class Real>
+struct RateHalfStepFunctor {
+  ReferencePairs<D, Real> pairs;
+  const Vec<D, Real>* velocity;
+  const Mat<D, Real>* correction;
+  Mat<D, Real>* rate;
+  Mat<D, Real>* deformation_gradient;
+  Vec<D, Real>* displacement;
+  Real half_dt;
+  StepStatisticsFunctor<D, Real> statistics;  // reads the updated displacement
+
+  MFSD_HD StepStatistics<Real> operator()(Index i) const {
+    const Mat<D, Real> dF = deformation_rate(pairs, velocity, correction[i], i);
+    rate[i] = dF;
+    deformation_gradient[i] += dF * half_dt;
+    displacement[i] += velocity[i] * half_dt;
+    return statistics(i);
   }
 };
 

@@ -2,6 +2,9 @@
 // the mean over its reference neighbours of |e_hat_ij|,
 //   e_hat_ij = 1/2 (F_i^{-1} + F_j^{-1}) r_ij / r0_ij - e0_ij   (seed 000 eq. 31),
 // zero for any linear deformation, large for zigzag (hourglass) patterns.
+// From the pair data: |e_hat_ij| = |h_ij| / |g_ij| (acceleration.hpp); pairs
+// with a zero kernel gradient (at the support edge) carry no direction and
+// are left out of the mean.
 #pragma once
 #include "kernels/core/mat.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
@@ -28,13 +31,18 @@ struct HourglassIndicatorFunctor {
     const Vec<D, Real> ui = displacement[i];
     const Mat<D, Real> Fi_inv = inverse_F[i];
     Real sum = Real(0);
+    Index count = 0;
     for (PairIndex p = begin; p < end; ++p) {
       const Index j = pairs.neighbor[p];
-      const Vec<D, Real> e0 = pairs.e0[p];
-      const Vec<D, Real> r_over_r0 = e0 + (ui - displacement[j]) * pairs.inv_r0[p];
-      sum += norm((Fi_inv + inverse_F[j]) * r_over_r0 * Real(0.5) - e0);
+      const Vec<D, Real> g = pairs.grad[p];
+      const Real g2 = squared_norm(g);
+      if (g2 == Real(0)) continue;
+      const Vec<D, Real> t = g + (ui - displacement[j]) * pairs.stretch[p];
+      const Vec<D, Real> h = (Fi_inv + inverse_F[j]) * t * Real(0.5) - g;
+      sum += math::sqrt(squared_norm(h) / g2);
+      ++count;
     }
-    indicator[i] = end > begin ? sum / Real(end - begin) : Real(0);
+    indicator[i] = count > 0 ? sum / Real(count) : Real(0);
   }
 };
 

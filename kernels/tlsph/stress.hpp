@@ -1,4 +1,6 @@
-// Per-particle stress stage of TLSPH. Computes, from F, dF/dt and B0, the
+// Per-particle stress stage of TLSPH, fused with the first half step of the
+// position-based Verlet scheme (F += dt/2 dF/dt, u += dt/2 v; seed 000 eq. 35)
+// so that F is read and written once. Computes, from F, dF/dt and B0, the
 // matrices the force stage sums over pairs, specialized on the material and
 // the hourglass variant:
 //   none      : M = (tau + tau_d) F^{-T} B0                       (seed 000 eq. 3, 20)
@@ -8,6 +10,7 @@
 //   genog     : M = tau_r F^{-T} B0,
 //               tau_r = tau_vol I - 1/d c tr(b) I + tau_d        (seed 000 eq. 25)
 //               S = c b F^{-T} B0 = c F B0,  F^{-1}              (seed 000 eq. 32)
+//               stored as Q = M + S and S (acceleration.hpp).
 // B0 is symmetric, so P B0^T = P B0. With correction_in_force = false, B0 is
 // left out of the force sums (only dF/dt uses it), as in the authors' code.
 #pragma once
@@ -25,19 +28,26 @@ struct StressFunctor {
   KelvinVoigtDamping<Real> damping;
   Real zeta;
   bool correction_in_force;
-  const Mat<D, Real>* deformation_gradient;
+  Real half_dt;  // 0 computes the stress without moving the state
+  Mat<D, Real>* deformation_gradient;
+  Vec<D, Real>* displacement;
+  const Vec<D, Real>* velocity;
   const Mat<D, Real>* rate;
   const Mat<D, Real>* correction;
-  Mat<D, Real>* force_stress;  // M
+  Mat<D, Real>* force_stress;  // M, or Q = M + S (genog)
   Real* shear_coefficient;     // s (laplacian)
   Mat<D, Real>* shear_stress;  // S (genog)
   Mat<D, Real>* inverse_F;     // F^{-1} (genog)
 
   MFSD_HD void operator()(Index i) const {
-    const Mat<D, Real> F = deformation_gradient[i];
+    const Mat<D, Real> dF = rate[i];
+    const Mat<D, Real> F = deformation_gradient[i] + dF * half_dt;  // eq. 35
+    deformation_gradient[i] = F;
+    displacement[i] += velocity[i] * half_dt;
     const Mat<D, Real> F_inv = inverse(F);
-    const Mat<D, Real> tau_d = damping.stress(F, rate[i]);
+    const Mat<D, Real> tau_d = damping.stress(F, dF);
     Mat<D, Real> tau;
+    [[maybe_unused]] Mat<D, Real> S;
     if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
       tau = material.kirchhoff(F) + tau_d;
     } else {
@@ -51,13 +61,16 @@ struct StressFunctor {
       } else {
         tau = tau_d;
         tau.add_diagonal(material.volumetric_kirchhoff(J) - c * tr_b / Real(D));  // seed 000 tau_r
-        const Mat<D, Real> S = F * c;                                             // c b F^{-T} = c F
-        shear_stress[i] = correction_in_force ? S * correction[i] : S;
+        S = F * c;  // c b F^{-T} = c F
+        if (correction_in_force) S = S * correction[i];
+        shear_stress[i] = S;
         inverse_F[i] = F_inv;
       }
     }
-    const Mat<D, Real> P = mul_transposed(tau, F_inv);  // tau F^{-T}
-    force_stress[i] = correction_in_force ? P * correction[i] : P;
+    Mat<D, Real> M = mul_transposed(tau, F_inv);  // tau F^{-T}
+    if (correction_in_force) M = M * correction[i];
+    if constexpr (std::is_same<Hourglass, HourglassGenog>::value) M += S;
+    force_stress[i] = M;
   }
 };
 

@@ -33,9 +33,9 @@ void check_against_oracle(bool reorder, double jitter) {
   const auto bs = f.template host<int>(field::body);
   const auto offsets = to_host<Cpu>(f.pairs.offsets);
   const auto nb = to_host<Cpu>(f.pairs.neighbor);
-  const auto e0 = to_host<Cpu>(f.pairs.e0);
-  const auto dwv = to_host<Cpu>(f.pairs.dwv);
-  const auto inv_r0 = to_host<Cpu>(f.pairs.inv_r0);
+  const auto grad = to_host<Cpu>(f.pairs.grad);
+  const auto stretch = to_host<Cpu>(f.pairs.stretch);
+  const auto gradient_sum = to_host<Cpu>(f.pairs.gradient_sum);
   const auto beta = to_host<Cpu>(f.pairs.beta);
   const auto kernel = WendlandC2<D, double>::make(h);
 
@@ -57,15 +57,22 @@ void check_against_oracle(bool reorder, double jitter) {
     for (size_t j = 0; j < x.size(); ++j)
       if (j != i && body[j] == body[i] && norm(x[i] - x[j]) < 2 * h) oracle.insert(j);
     std::set<size_t> found;
+    Vec<D, double> sum = Vec<D, double>::zero();
     for (auto p = offsets[k]; p < offsets[k + 1]; ++p) {
       const size_t j = size_t(ids[size_t(nb[size_t(p)])]);
       found.insert(j);
+      // grad = V0_j dW/dr e0, stretch = V0_j dW/dr / r0, with e0 = (X_i - X_j)/r0.
       const double r = norm(x[i] - x[j]);
-      for (int a = 0; a < D; ++a) EXPECT_NEAR(e0[size_t(p)].v[a], (x[i].v[a] - x[j].v[a]) / r, 1e-14);
-      EXPECT_NEAR(dwv[size_t(p)], std::pow(dp, D) * kernel.dW(r), 1e-12);
-      EXPECT_NEAR(inv_r0[size_t(p)], 1 / r, 1e-9);
+      const double dwv = std::pow(dp, D) * kernel.dW(r);
+      const double scale = std::abs(dwv) / r + 1e-300;
+      for (int a = 0; a < D; ++a) {
+        EXPECT_NEAR(grad[size_t(p)].v[a], dwv * (x[i].v[a] - x[j].v[a]) / r, 1e-12 * scale);
+        sum.v[a] += dwv * (x[i].v[a] - x[j].v[a]) / r;
+      }
+      EXPECT_NEAR(stretch[size_t(p)], dwv / r, 1e-12 * scale);
       EXPECT_NEAR(beta[size_t(p)], kernel.W(r) / kernel.W(0), 1e-14);
     }
+    for (int a = 0; a < D; ++a) EXPECT_NEAR(gradient_sum[k].v[a], sum.v[a], 1e-9 * std::pow(dp, D - 1));
     EXPECT_EQ(found, oracle) << "particle " << i;
     total += oracle.size();
   }
