@@ -40,6 +40,7 @@ const char* kUsage =
     "  --set path=value        override a scene value, e.g. --set solver.hourglass=laplacian\n"
     "                          --set bodies.plate.material.poisson_ratio=0.4 (repeatable)\n"
     "  --max-steps N           stop after N steps\n"
+    "  --warmup-steps N        leave the first N steps out of timing.json (benchmarks)\n"
     "  -q, --quiet             no progress line and no summary\n"
     "\n"
     "outputs: run.json, snapshots.pvd + snapshots/*.vtu (ParaView), probes.csv, energies.csv, timing.json\n"
@@ -78,7 +79,7 @@ int command_run(int argc, char** argv, const std::string& command_line) {
   cxxopts::Options opts("mfsd run", "run a scene");
   opts.add_options()("o,output", "", cxxopts::value<std::string>())("backend", "", cxxopts::value<std::string>())(
       "threads", "", cxxopts::value<int>())("precision", "", cxxopts::value<std::string>())(
-      "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
+      "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())("warmup-steps", "", cxxopts::value<long>())(
       "q,quiet", "")("scene", "", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
@@ -107,6 +108,10 @@ int command_run(int argc, char** argv, const std::string& command_line) {
   if (r.count("max-steps")) {
     o.max_steps = r["max-steps"].as<long>();
     if (o.max_steps < 1) throw UsageError("--max-steps: expected N >= 1");
+  }
+  if (r.count("warmup-steps")) {
+    o.warmup_steps = r["warmup-steps"].as<long>();
+    if (o.warmup_steps < 0) throw UsageError("--warmup-steps: expected N >= 0");
   }
   o.quiet = r.count("quiet") > 0;
   const RunResult result = run_scene(doc, o);

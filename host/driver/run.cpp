@@ -1,5 +1,7 @@
 #include "host/driver/run.hpp"
 
+#include <algorithm>
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -148,7 +150,13 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       solver->limit_next_dt(end_time - solver->time());
       const auto t0 = Clock::now();
       solver->step();
-      step_seconds += seconds_since(t0);
+      const double seconds = seconds_since(t0);
+      if (solver->steps() > options.warmup_steps) {
+        step_seconds += seconds;
+        status.step_times.push_back(seconds);
+      } else if (solver->steps() == options.warmup_steps) {
+        solver->reset_timers();
+      }
       const double t = solver->time();
       const bool last = t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps);
       const bool snap = t >= next_output - eps || last;
@@ -169,6 +177,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   }
   progress.finish();
   status.steps = solver->steps();
+  status.warmup_steps = std::min(options.warmup_steps, status.steps);
   status.simulated_time = solver->time();
   status.step_seconds = step_seconds;
   status.output_seconds = output_seconds;
@@ -181,7 +190,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   if (!options.quiet) {
     char wall[32];
     format_duration(status.wall_seconds, wall, sizeof wall);
-    const double ps = double(setup.particles) * double(status.steps);
+    const double ps = double(setup.particles) * double(status.steps - status.warmup_steps);
     std::printf("mfsd: %s: %ld particles, %ld steps to t = %.6g s in %s (%.3g particle-steps/s; set-up %.2fs, output %.2fs)\n",
                 status.state.c_str(), setup.particles, status.steps, status.simulated_time, wall,
                 step_seconds > 0 ? ps / step_seconds : 0.0, status.setup_seconds, output_seconds);

@@ -14,6 +14,7 @@ struct RunOptions {
   SolverOptions solver;
   bool precision_given = false;  // --precision overrides the scene's solver.precision
   long max_steps = 0;            // 0 = until end_time
+  long warmup_steps = 0;         // steps left out of timing.json (caches, page faults, clocks)
   bool quiet = false;            // no progress and no summary
   std::string command_line;
 };

@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <ctime>
 #include <fstream>
 #include <thread>
@@ -101,9 +102,20 @@ void write_timing_json(const std::string& dir, const SetupReport& setup, const S
   j["setup_seconds"] = status.setup_seconds;
   j["step_seconds"] = status.step_seconds;
   j["output_seconds"] = status.output_seconds;
-  const double ps = double(setup.particles) * double(status.steps);
+  // Timed steps: all but the first --warmup-steps.
+  const long timed = status.steps - status.warmup_steps;
+  j["warmup_steps"] = status.warmup_steps;
+  j["timed_steps"] = timed;
+  const double ps = double(setup.particles) * double(timed);
   j["particle_steps_per_second"] = status.step_seconds > 0 ? ps / status.step_seconds : 0.0;
-  j["microseconds_per_step"] = status.steps > 0 ? 1e6 * status.step_seconds / status.steps : 0.0;
+  j["microseconds_per_step"] = timed > 0 ? 1e6 * status.step_seconds / double(timed) : 0.0;
+  if (!status.step_times.empty()) {  // distribution of the wall time of one step
+    std::vector<double> t = status.step_times;
+    std::sort(t.begin(), t.end());
+    auto q = [&](double f) { return 1e6 * t[size_t(f * double(t.size() - 1) + 0.5)]; };
+    j["step_microseconds"] = {{"min", q(0)}, {"p10", q(0.1)}, {"median", q(0.5)}, {"p90", q(0.9)}, {"max", q(1)}};
+  }
+  j["bytes_per_particle"] = setup.bytes_per_particle;
   j["backend"] = options.solver.backend;
   j["threads"] = options.solver.backend == "cpu" ? (options.solver.threads > 0 ? options.solver.threads
                                                                               : omp_get_max_threads())
@@ -116,7 +128,7 @@ void write_timing_json(const std::string& dir, const SetupReport& setup, const S
     s["name"] = st.first;
     s["seconds"] = st.second;
     s["share"] = total > 0 ? st.second / total : 0.0;
-    s["microseconds_per_step"] = status.steps > 0 ? 1e6 * st.second / status.steps : 0.0;
+    s["microseconds_per_step"] = timed > 0 ? 1e6 * st.second / double(timed) : 0.0;
     s["nanoseconds_per_particle_step"] = ps > 0 ? 1e9 * st.second / ps : 0.0;
     stages.push_back(s);
   }

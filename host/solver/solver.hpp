@@ -61,6 +61,7 @@ class Solver {
   virtual EnergySample energies() = 0;
   virtual std::vector<ProbeSample> probes() = 0;
   virtual const StageTimers& timers() const = 0;
+  virtual void reset_timers() = 0;  // after warm-up steps
   virtual SetupReport setup_report() const = 0;
 };
 

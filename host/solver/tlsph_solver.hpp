@@ -168,8 +168,9 @@ class TlsphSolver final : public Solver {
       report_.max_neighbors = std::max(report_.max_neighbors, c);
     }
     if (n == 0) report_.min_neighbors = 0;
-    const double pair_bytes = double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + 2 * sizeof(Real) +
-                                                        (paper_limiter ? sizeof(Real) : 0));
+    const double pair_bytes = double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
+                                                        (paper_limiter ? sizeof(Real) : 0)) +
+                              double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>));  // offsets, gradient sum
     report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
   }
 
@@ -207,6 +208,7 @@ class TlsphSolver final : public Solver {
   double next_dt() const override { return dt_next_; }
   long steps() const override { return steps_; }
   const StageTimers& timers() const override { return timers_; }
+  void reset_timers() override { timers_.reset(); }
   SetupReport setup_report() const override { return report_; }
 
   Snapshot snapshot() override {

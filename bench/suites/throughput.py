@@ -1,0 +1,102 @@
+"""Suite `throughput`: particle-steps/s, time per step, per-stage share and
+peak memory per particle of the TLSPH step (genog, neo-Hookean) for the
+bending column 3D (about 10k, 80k, 650k particles) and the oscillating plate
+2D (three sizes), on 1 and all threads, in float and double. A fixed number
+of steps after a warm-up; the median of several repeats."""
+import os
+
+import bench_lib as b
+
+CASES = [  # (label, scene, H/dp)
+    ("bending column 3D", b.BENDING, 12),
+    ("bending column 3D", b.BENDING, 24),
+    ("bending column 3D", b.BENDING, 48),
+    ("oscillating plate 2D", b.PLATE, 20),
+    ("oscillating plate 2D", b.PLATE, 40),
+    ("oscillating plate 2D", b.PLATE, 80),
+]
+QUICK = [c for c in CASES if c[2] in (12, 24, 20, 40)]
+
+
+def timed_steps(particles):
+    return int(min(300, max(20, 2e7 / particles)))
+
+
+def main(args):
+    threads = sorted({1, os.cpu_count() or 1}) if args.backend == "cpu" else [0]
+    repeats = args.repeats or (1 if args.quick else 3)
+    rows = []
+    for label, scene, res in (QUICK if args.quick else CASES):
+        for precision in ("double", "float"):
+            for t in threads:
+                sets = {"constants.H_over_dp": res, "solver.hourglass": "genog", **b.QUIET_OUTPUT}
+                out = os.path.join(b.OUT, "throughput", f"{os.path.basename(scene)[:-5]}_{res}_{precision}_{t}")
+                # Size the run from a one-step probe of the particle count.
+                probe, _, _ = b.run(scene, sets, out, threads=t, precision=precision, backend=args.backend,
+                                    max_steps=1)
+                steps = timed_steps(probe["particles"])
+                (timing, info, rss), rates = b.median_run(repeats, scene, sets, out, threads=t, precision=precision,
+                                                          backend=args.backend, max_steps=steps + 5, warmup=5)
+                rows.append({
+                    "case": label, "scene": scene, "H_over_dp": res, "precision": precision, "threads": t,
+                    "particles": timing["particles"], "neighbors_per_particle": info["neighbors"]["mean"],
+                    "timed_steps": timing["timed_steps"], "repeats": repeats,
+                    "particle_steps_per_second": timing["particle_steps_per_second"], "all_rates": rates,
+                    "microseconds_per_step": timing["microseconds_per_step"],
+                    "step_microseconds": timing.get("step_microseconds"),
+                    "stages": b.stage_table(timing),
+                    "peak_memory_bytes_per_particle": rss / timing["particles"],
+                    "model_bytes_per_particle": timing["bytes_per_particle"],
+                    "setup_seconds": timing["setup_seconds"],
+                })
+    md = ["| case | H/dp | particles | nbrs | precision | threads | M particle-steps/s | ms/step | "
+          "force / rate / stress share | peak memory [B/particle] |", "|" + "---|" * 10]
+    for r in rows:
+        s = r["stages"]
+        share = " / ".join(f"{100 * s[k]['share']:.0f} %" for k in ("force", "deformation_rate", "stress") if k in s)
+        md.append(f"| {r['case']} | {r['H_over_dp']} | {r['particles']} | {r['neighbors_per_particle']:.1f} | "
+                  f"{r['precision']} | {r['threads'] or 'gpu'} | {b.mega(r['particle_steps_per_second']):.2f} | "
+                  f"{r['microseconds_per_step'] / 1e3:.2f} | {share} | {r['peak_memory_bytes_per_particle']:.0f} |")
+    speedups = []
+    if len(threads) > 1:
+        md += ["", f"Speed-up from 1 to {threads[-1]} threads:", "",
+               "| case | H/dp | precision | speed-up |", "|---|---|---|---|"]
+        for r in rows:
+            if r["threads"] != threads[-1]:
+                continue
+            one = next(x for x in rows if x["threads"] == 1 and x["scene"] == r["scene"]
+                       and x["H_over_dp"] == r["H_over_dp"] and x["precision"] == r["precision"])
+            sp = r["particle_steps_per_second"] / one["particle_steps_per_second"]
+            speedups.append({"case": r["case"], "H_over_dp": r["H_over_dp"], "precision": r["precision"],
+                             "speedup": sp})
+            md.append(f"| {r['case']} | {r['H_over_dp']} | {r['precision']} | {sp:.2f} |")
+    md.append("")
+    stem = b.result_stem("throughput")
+    plot(rows, threads, stem + ".png")
+    md.append(f"![throughput]({os.path.basename(stem)}.png)\n")
+    b.write_results("throughput", {"machine": args.machine, "rows": rows, "speedups": speedups},
+                    "\n".join(md) + "\n", args.command)
+
+
+def plot(rows, threads, path):
+    plt = b.plt()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for ax, label in zip(axes, ("bending column 3D", "oscillating plate 2D")):
+        sub = [r for r in rows if r["case"] == label]
+        sizes = sorted({r["particles"] for r in sub})
+        configs = [(p, t) for p in ("double", "float") for t in threads]
+        width = 0.8 / len(configs)
+        for k, (p, t) in enumerate(configs):
+            ys = [next((b.mega(r["particle_steps_per_second"]) for r in sub
+                        if r["particles"] == n and r["precision"] == p and r["threads"] == t), 0) for n in sizes]
+            ax.bar([i + k * width for i in range(len(sizes))], ys, width,
+                   label=f"{p}, {t} thread{'s' if t != 1 else ''}" if t else f"{p}, gpu")
+        ax.set_xticks([i + 0.4 - width / 2 for i in range(len(sizes))])
+        ax.set_xticklabels([f"{n:,}" for n in sizes])
+        ax.set_xlabel("particles")
+        ax.set_ylabel("million particle-steps / s")
+        ax.set_title(f"{label}, genog")
+        ax.grid(axis="y", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
