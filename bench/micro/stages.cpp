@@ -22,7 +22,7 @@
 namespace {
 
 using namespace mfsd;
-constexpr int kSide = 32;  // 32^3 = 32,768 particles, about 52 neighbours each
+constexpr int kSide = 44;  // 44^3 = 85,184 particles, about 52 neighbours each
 constexpr double kDp = 0.1, kH = 1.15 * kDp;
 
 // A slightly sheared, jittered lattice block with every TLSPH field.

@@ -22,7 +22,7 @@ struct ReferenceNeighborList {
   DeviceVector<B, Real> stretch, beta;
   DeviceVector<B, Vec<D, Real>> gradient_sum;  // per particle
 
-  PairIndex pairs() const { return PairIndex(neighbor.size()); }
+  PairIndex pairs() const { return PairIndex(grad.size()); }
 
   ReferencePairs<D, Real> view() const {
     return ReferencePairs<D, Real>{raw(offsets),      raw(neighbor), raw(grad), raw(stretch),
@@ -96,7 +96,7 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
   list.offsets.resize(size_t(n) + 1);
   const PairIndex total = exclusive_scan<B, Index, PairIndex>(count, list.offsets);
   list.offsets[size_t(n)] = total;
-  list.neighbor.resize(size_t(total));
+  list.neighbor.resize(size_t(total) + kPairPrefetchDistance, 0);  // padded for the prefetch
   list.grad.resize(size_t(total));
   list.stretch.resize(size_t(total));
   list.gradient_sum.resize(size_t(n));

@@ -12,6 +12,16 @@
 #endif
 
 namespace mfsd {
+// Software prefetch into the CPU caches (a hint; nothing on the GPU, whose
+// many resident warps hide memory latency instead).
+MFSD_HD inline void prefetch(const void* address) {
+#if !defined(__CUDA_ARCH__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+
 // Particle index. 32 bits: one process holds far fewer than 2^31 particles.
 using Index = std::int32_t;
 // Offset into per-pair (CSR) arrays: can exceed 2^31 for large 3-D runs.

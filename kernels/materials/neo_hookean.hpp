@@ -17,8 +17,18 @@ struct NeoHookean {
   // Volumetric Kirchhoff stress K/2 (J^2 - 1) (seed 000 eq. 7).
   MFSD_HD Real volumetric_kirchhoff(Real J) const { return Real(0.5) * K * (J * J - Real(1)); }
 
+  // J^{-2/d} without a general pow (3-D: cube root; 2-D: 1/J).
+  MFSD_HD static Real isochoric_factor(Real J) {
+    if constexpr (D == 2) {
+      return Real(1) / J;
+    } else {
+      const Real c = math::cbrt(J);
+      return Real(1) / (c * c);
+    }
+  }
+
   // c = G J^{-2/d} (seed 000 eq. 25, tau_s = c b).
-  MFSD_HD Real shear_coefficient(Real J) const { return G * math::pow(J, Real(-2) / Real(D)); }
+  MFSD_HD Real shear_coefficient(Real J) const { return G * isochoric_factor(J); }
 
   MFSD_HD Mat<D, Real> kirchhoff(const Mat<D, Real>& F) const {
     const Real J = det(F);
@@ -29,7 +39,7 @@ struct NeoHookean {
   // Strain energy per reference volume (seed 000 eq. 4-6).
   MFSD_HD Real strain_energy_density(const Mat<D, Real>& F) const {
     const Real J = det(F);
-    const Real tr_b_bar = trace(mul_transposed(F, F)) * math::pow(J, Real(-2) / Real(D));
+    const Real tr_b_bar = trace(mul_transposed(F, F)) * isochoric_factor(J);
     return Real(0.5) * K * (Real(0.5) * (J * J - Real(1)) - math::log(J)) +
            Real(0.5) * G * (tr_b_bar - Real(D));
   }

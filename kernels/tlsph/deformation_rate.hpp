@@ -14,6 +14,7 @@ MFSD_HD inline Mat<D, Real> deformation_rate(const ReferencePairs<D, Real>& pair
                                              const Mat<D, Real>& B0, Index i) {
   Mat<D, Real> sum = Mat<D, Real>::zero();
   for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
+    prefetch(&velocity[pairs.neighbor[p + kPairPrefetchDistance]]);
     const Vec<D, Real> vj = velocity[pairs.neighbor[p]];
     const Vec<D, Real> g = pairs.grad[p];
     for (int a = 0; a < D; ++a)

@@ -14,6 +14,10 @@
 
 namespace mfsd {
 
+// The pair loops prefetch the fields of the neighbour this many pairs ahead;
+// the neighbour array carries as many extra entries (index 0) at its end.
+constexpr int kPairPrefetchDistance = 16;
+
 template <int D, class Real>
 struct ReferencePairs {
   const PairIndex* offsets;  // size n + 1; pairs of i are [offsets[i], offsets[i+1])
