@@ -66,6 +66,7 @@ struct Block {
                           field::force_stress, field::shear_stress, field::inverse_deformation_gradient})
       particles.add<Mat<3, Real>>(f);
     particles.add<Vec<3, Real>>(field::acceleration);
+    particles.add<GenogNeighborRecord<Real>>(field::genog_neighbor_record);
     if (build_pairs) build();
     auto* F = particles.get<Mat<3, Real>>(field::deformation_gradient);
     auto* B0 = particles.get<Mat<3, Real>>(field::correction_matrix);
@@ -83,6 +84,8 @@ struct Block {
     return particles.get<T>(name);
   }
 
+  bool packed = false;  // the CPU force loop's packed neighbour record (as the solver uses)
+
   StressFunctor<3, Real, NeoHookean<3, Real>, HourglassGenog> stress(Real half_dt) {
     return {NeoHookean<3, Real>{Real(5.7e7), Real(5.9e6)},
             {Real(1e3), Real(1e2)},
@@ -97,7 +100,8 @@ struct Block {
             f<Mat<3, Real>>(field::force_stress),
             nullptr,
             f<Mat<3, Real>>(field::shear_stress),
-            f<Mat<3, Real>>(field::inverse_deformation_gradient)};
+            f<Mat<3, Real>>(field::inverse_deformation_gradient),
+            packed ? f<GenogNeighborRecord<Real>>(field::genog_neighbor_record) : nullptr};
   }
 };
 
@@ -135,9 +139,11 @@ void BM_Stress(benchmark::State& state) {
   report(state, block.n);
 }
 
+// Argument: 1 = packed neighbour record (the solver's CPU path), 0 = scalar path.
 template <class Real>
 void BM_Force(benchmark::State& state) {
   Block<Real> block;
+  block.packed = state.range(0) != 0;
   parallel_for<Cpu>(block.n, block.stress(Real(0)));
   AccelerationFunctor<3, Real, HourglassGenog> f{block.pairs.view(),
                                                  block.template f<Mat<3, Real>>(field::force_stress),
@@ -145,6 +151,9 @@ void BM_Force(benchmark::State& state) {
                                                  block.template f<Mat<3, Real>>(field::shear_stress),
                                                  block.template f<Mat<3, Real>>(field::inverse_deformation_gradient),
                                                  block.template f<Vec<3, Real>>(field::displacement),
+                                                 block.packed ? block.template f<GenogNeighborRecord<Real>>(
+                                                                    field::genog_neighbor_record)
+                                                              : nullptr,
                                                  Real(1.0 / 1100),
                                                  Vec<3, Real>::zero(),
                                                  GenogWeight<Real>{GenogLimiter::capped, Real(0)},
@@ -188,8 +197,8 @@ BENCHMARK_TEMPLATE(BM_NeighborListBuild, double)->Unit(benchmark::kMillisecond)-
 BENCHMARK_TEMPLATE(BM_Reorder, double)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_TEMPLATE(BM_Stress, double)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_TEMPLATE(BM_Stress, float)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_TEMPLATE(BM_Force, double)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_TEMPLATE(BM_Force, float)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_Force, double)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_TEMPLATE(BM_Force, float)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_TEMPLATE(BM_DeformationRate, double)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_TEMPLATE(BM_DeformationRate, float)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

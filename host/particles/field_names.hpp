@@ -18,6 +18,7 @@ inline constexpr const char* force_stress = "force_stress";
 inline constexpr const char* shear_coefficient = "shear_coefficient";
 inline constexpr const char* shear_stress = "shear_stress";
 inline constexpr const char* inverse_deformation_gradient = "inverse_deformation_gradient";
+inline constexpr const char* genog_neighbor_record = "genog_neighbor_record";  // 3-D genog, CPU
 inline constexpr const char* hourglass_indicator = "hourglass_indicator";
 inline constexpr const char* von_mises = "von_mises";
 inline constexpr const char* jacobian = "jacobian";

@@ -62,7 +62,8 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
                                                   v.force_stress,
                                                   v.shear_coefficient,
                                                   v.shear_stress,
-                                                  v.inverse_F};
+                                                  v.inverse_F,
+                                                  v.neighbor_record};
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
@@ -75,6 +76,7 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
                                               v.shear_stress,
                                               v.inverse_F,
                                               v.displacement,
+                                              v.neighbor_record,
                                               Real(1.0 / s_.density),
                                               g,
                                               GenogWeight<Real>{s_.genog_limiter, Real(s_.genog_alpha * D)},

@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "host/neighbors/reference_neighbor_list.hpp"
@@ -122,6 +123,9 @@ class TlsphSolver final : public Solver {
       particles_.template add<Real>(field::shear_coefficient);
     if (scene_.solver.hourglass == HourglassControl::genog)
       particles_.template add<Mat<D, Real>>(field::shear_stress);
+    // The packed neighbour record of the vectorized CPU force loop (3-D genog).
+    if (scene_.solver.hourglass == HourglassControl::genog && D == 3 && std::is_same<B, Cpu>::value)
+      particles_.template add<GenogNeighborRecord<Real>>(field::genog_neighbor_record);
     particles_.template add<Real>(field::hourglass_indicator);
     particles_.template add<Real>(field::von_mises);
     particles_.template add<Real>(field::jacobian);
@@ -350,6 +354,9 @@ class TlsphSolver final : public Solver {
     v_.shear_coefficient = opt_real(field::shear_coefficient);
     v_.shear_stress = opt_mat(field::shear_stress);
     v_.inverse_F = opt_mat(field::inverse_deformation_gradient);
+    v_.neighbor_record = particles_.has(field::genog_neighbor_record)
+                             ? particles_.template get<GenogNeighborRecord<Real>>(field::genog_neighbor_record)
+                             : nullptr;
     v_.hourglass_indicator = particles_.template get<Real>(field::hourglass_indicator);
     v_.von_mises = particles_.template get<Real>(field::von_mises);
     v_.jacobian = particles_.template get<Real>(field::jacobian);

@@ -2,6 +2,7 @@
 // after set-up (buffers never move afterwards) and handed to the functors.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
 
 namespace mfsd {
@@ -21,6 +22,7 @@ struct TlsphViews {
   Real* shear_coefficient;      // laplacian bodies only (else null)
   Mat<D, Real>* shear_stress;   // genog bodies only
   Mat<D, Real>* inverse_F;      // genog bodies, and scratch for the indicator
+  GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU backend, else null
   Real* hourglass_indicator;
   Real* von_mises;
   Real* jacobian;

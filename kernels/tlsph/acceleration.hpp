@@ -19,6 +19,7 @@
 #include <type_traits>
 
 #include "kernels/core/mat.hpp"
+#include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/hourglass.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
 
@@ -49,6 +50,7 @@ struct AccelerationFunctor {
   const Mat<D, Real>* shear_stress;     // S (genog)
   const Mat<D, Real>* inverse_F;        // F^{-1} (genog)
   const Vec<D, Real>* displacement;     // u
+  const GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU: Q, F^{-1}, u packed
   Real inv_rho0;
   Vec<D, Real> body_acceleration;       // gravity
   GenogWeight<Real> genog_weight;
@@ -101,33 +103,28 @@ struct AccelerationFunctor {
   }
 
  private:
-  MFSD_HD void finish(Index i, const Vec<D, Real>& sum) const {
-    const Vec<D, Real> a = (force_stress[i] * pairs.gradient_sum[i] + sum) * inv_rho0 + body_acceleration;
+  MFSD_HD void finish(Index i, const Vec<D, Real>& sum) const { finish(i, force_stress[i], sum); }
+
+  MFSD_HD void finish(Index i, const Mat<D, Real>& Qi, const Vec<D, Real>& sum) const {
+    const Vec<D, Real> a = (Qi * pairs.gradient_sum[i] + sum) * inv_rho0 + body_acceleration;
     acceleration[i] = a;
     velocity[i] += a * dt;  // eq. 36
   }
 
-  // genog in 3-D: the same sums in two passes over the pairs. The first pass
-  // sums Q_j g_ij and tests phi_ij > 0 on squares, written on scalars with
-  // (F_i^{-1} + F_j^{-1}) t as 9 adds and 9 multiplies (1.4x faster than the
-  // same arithmetic on Vec/Mat temporaries; docs/performance.md). Only a
-  // particle with an active pair (rare in an orderly distribution) takes the
-  // second pass, which adds phi_ij (S_i + S_j) h_ij.
-  MFSD_HD void genog_particle_3d(Index i) const {
+  // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair has phi_ij > 0.
+  MFSD_HD bool genog_first_pass(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
+                                Real& s0_out, Real& s1_out, Real& s2_out) const {
     const Real* Q = &force_stress[0].m[0][0];
     const Real* Fv = &inverse_F[0].m[0][0];
     const Real* U = &displacement[0].v[0];
     const Real* G = &pairs.grad[0].v[0];
     const Real* K = pairs.stretch;
     const Index* J = pairs.neighbor;
-    const Mat<D, Real> Fi = inverse_F[i];
-    const Vec<D, Real> ui = displacement[i];
     const Real f00 = Fi.m[0][0], f01 = Fi.m[0][1], f02 = Fi.m[0][2];
     const Real f10 = Fi.m[1][0], f11 = Fi.m[1][1], f12 = Fi.m[1][2];
     const Real f20 = Fi.m[2][0], f21 = Fi.m[2][1], f22 = Fi.m[2][2];
     const Real u0 = ui.v[0], u1 = ui.v[1], u2 = ui.v[2];
     const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
-    const PairIndex begin = pairs.offsets[i], end = pairs.offsets[i + 1];
     Real s0 = Real(0), s1 = Real(0), s2 = Real(0);
     bool active = false;
     for (PairIndex p = begin; p < end; ++p) {
@@ -151,6 +148,76 @@ struct AccelerationFunctor {
       const Real h2 = Real(0.5) * ((f20 + Fv[j9 + 6]) * t0 + (f21 + Fv[j9 + 7]) * t1 + (f22 + Fv[j9 + 8]) * t2) - g2;
       active |= h0 * h0 + h1 * h1 + h2 * h2 > thr2 * (g0 * g0 + g1 * g1 + g2 * g2);
     }
+    s0_out = s0;
+    s1_out = s1;
+    s2_out = s2;
+    return active;
+  }
+
+#if !defined(__CUDACC__)
+  // The same first pass on 4-wide vectors (GCC vector extensions; the
+  // compiler maps them to SSE/AVX registers), reading the packed neighbour
+  // record: Q_j g and (F_i^{-1} + F_j^{-1}) t are three vector FMAs each.
+  bool genog_first_pass_packed(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
+                               Real& s0_out, Real& s1_out, Real& s2_out) const {
+    typedef Real V4 __attribute__((vector_size(4 * sizeof(Real))));
+    auto load = [](const Real* p) {
+      V4 v;
+      __builtin_memcpy(&v, p, sizeof v);
+      return v;
+    };
+    const V4 fi0 = {Fi.m[0][0], Fi.m[1][0], Fi.m[2][0], Real(0)};
+    const V4 fi1 = {Fi.m[0][1], Fi.m[1][1], Fi.m[2][1], Real(0)};
+    const V4 fi2 = {Fi.m[0][2], Fi.m[1][2], Fi.m[2][2], Real(0)};
+    const V4 u_i = {ui.v[0], ui.v[1], ui.v[2], Real(0)};
+    const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
+    const Real* G = &pairs.grad[0].v[0];
+    const Real* K = pairs.stretch;
+    const Index* J = pairs.neighbor;
+    const GenogNeighborRecord<Real>* R = neighbor_record;
+    V4 acc = {Real(0), Real(0), Real(0), Real(0)};
+    bool active = false;
+    for (PairIndex p = begin; p < end; ++p) {
+      const GenogNeighborRecord<Real>& r = R[J[p]];
+      {  // the record kPairPrefetchDistance pairs ahead (224 bytes in double)
+        const char* ahead = reinterpret_cast<const char*>(R + J[p + kPairPrefetchDistance]);
+        for (unsigned off = 0; off < sizeof(GenogNeighborRecord<Real>); off += 64) prefetch(ahead + off);
+      }
+      const Real g0 = G[3 * p], g1 = G[3 * p + 1], g2 = G[3 * p + 2], k = K[p];
+      acc += load(r.q[0]) * g0 + load(r.q[1]) * g1 + load(r.q[2]) * g2;  // eq. 20, 32: Q_j g_ij
+      const V4 g = {g0, g1, g2, Real(0)};
+      const V4 t = g + (u_i - load(r.u)) * k;
+      const V4 s = (fi0 + load(r.f[0])) * t[0] + (fi1 + load(r.f[1])) * t[1] + (fi2 + load(r.f[2])) * t[2];
+      const V4 h = s * Real(0.5) - g;  // eq. 31 times V0_j dW
+      const V4 d = h * h - g * g * thr2;
+      active |= d[0] + d[1] + d[2] > Real(0);
+    }
+    s0_out = acc[0];
+    s1_out = acc[1];
+    s2_out = acc[2];
+    return active;
+  }
+#endif
+
+  // genog in 3-D: the same sums in two passes over the pairs. The first pass
+  // sums Q_j g_ij and tests phi_ij > 0 on squares, written on scalars with
+  // (F_i^{-1} + F_j^{-1}) t as 9 adds and 9 multiplies (1.4x faster than the
+  // same arithmetic on Vec/Mat temporaries; docs/performance.md). Only a
+  // particle with an active pair (rare in an orderly distribution) takes the
+  // second pass, which adds phi_ij (S_i + S_j) h_ij.
+  MFSD_HD void genog_particle_3d(Index i) const {
+    const Mat<D, Real> Fi = neighbor_record ? neighbor_record[i].F_inv() : inverse_F[i];
+    const Vec<D, Real> ui = displacement[i];
+    const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
+    const PairIndex begin = pairs.offsets[i], end = pairs.offsets[i + 1];
+    Real s0, s1, s2;
+    bool active;
+#if !defined(__CUDACC__)
+    if (neighbor_record)
+      active = genog_first_pass_packed(Fi, ui, begin, end, s0, s1, s2);
+    else
+#endif
+      active = genog_first_pass(Fi, ui, begin, end, s0, s1, s2);
     Vec<D, Real> sum;
     sum.v[0] = s0;
     sum.v[1] = s1;
@@ -161,7 +228,7 @@ struct AccelerationFunctor {
         const Index j = pairs.neighbor[p];
         const Vec<D, Real> g = pairs.grad[p];
         const Vec<D, Real> t = g + (ui - displacement[j]) * pairs.stretch[p];
-        const Vec<D, Real> h = (Fi + inverse_F[j]) * t * Real(0.5) - g;
+        const Vec<D, Real> h = (Fi + (neighbor_record ? neighbor_record[j].F_inv() : inverse_F[j])) * t * Real(0.5) - g;
         const Real h2 = squared_norm(h), g2 = squared_norm(g);
         if (h2 > thr2 * g2) {
           const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
@@ -169,7 +236,7 @@ struct AccelerationFunctor {
         }
       }
     }
-    finish(i, sum);
+    finish(i, neighbor_record ? neighbor_record[i].Q() : force_stress[i], sum);
   }
 };
 

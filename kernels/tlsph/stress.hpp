@@ -18,6 +18,7 @@
 
 #include "kernels/core/mat.hpp"
 #include "kernels/tlsph/damping.hpp"
+#include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/hourglass.hpp"
 
 namespace mfsd {
@@ -38,6 +39,7 @@ struct StressFunctor {
   Real* shear_coefficient;     // s (laplacian)
   Mat<D, Real>* shear_stress;  // S (genog)
   Mat<D, Real>* inverse_F;     // F^{-1} (genog)
+  GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU, else null
 
   MFSD_HD void operator()(Index i) const {
     const Mat<D, Real> dF = rate[i];
@@ -64,12 +66,20 @@ struct StressFunctor {
         S = F * c;  // c b F^{-T} = c F
         if (correction_in_force) S = S * correction[i];
         shear_stress[i] = S;
-        inverse_F[i] = F_inv;
+        if (!neighbor_record) inverse_F[i] = F_inv;
       }
     }
     Mat<D, Real> M = mul_transposed(tau, F_inv);  // tau F^{-T}
     if (correction_in_force) M = M * correction[i];
-    if constexpr (std::is_same<Hourglass, HourglassGenog>::value) M += S;
+    if constexpr (std::is_same<Hourglass, HourglassGenog>::value && D == 3) {
+      M += S;
+      if (neighbor_record) {
+        neighbor_record[i].set(M, F_inv, displacement[i]);
+        return;
+      }
+    } else if constexpr (std::is_same<Hourglass, HourglassGenog>::value) {
+      M += S;
+    }
     force_stress[i] = M;
   }
 };
