@@ -124,6 +124,24 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   EXPECT_EQ(vtu, 3u);
 }
 
+// --warmup-steps leaves the first steps out of the rates; the step-time
+// distribution covers the timed steps only.
+TEST_F(Cli, WarmupStepsAreNotTimed) {
+  const Result r = run("run " + scene() + " -o " + out() + " -q --max-steps 7 --warmup-steps 3");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto timing = nlohmann::json::parse(std::ifstream(fs::path(out()) / "timing.json"));
+  EXPECT_EQ(timing["steps"].get<long>(), 7);
+  EXPECT_EQ(timing["warmup_steps"].get<long>(), 3);
+  EXPECT_EQ(timing["timed_steps"].get<long>(), 4);
+  const auto& st = timing["step_microseconds"];
+  EXPECT_LE(st["min"].get<double>(), st["median"].get<double>());
+  EXPECT_LE(st["median"].get<double>(), st["max"].get<double>());
+  const double per_step = timing["microseconds_per_step"].get<double>();
+  EXPECT_NEAR(per_step, 1e6 * timing["step_seconds"].get<double>() / 4, 1e-6 * per_step);
+  EXPECT_EQ(run("run " + scene() + " -o " + out() + "_bad --warmup-steps -1").code, 2);
+  EXPECT_FALSE(fs::exists(out() + "_bad"));
+}
+
 TEST_F(Cli, SetOverridesSceneValues) {
   const Result r = run("run " + scene() + " -o " + out() +
                        " -q --set solver.hourglass=laplacian --set bodies.block.material.poisson_ratio=0.4");

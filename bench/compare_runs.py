@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Checks that a speed change did not change results beyond round-off: runs
+two mfsd binaries on short versions of the plate, bending-column and
+twisting-column scenes (one thread each, double) and prints the largest
+relative difference of every probe column and of the final total energy.
+Usage: bench/compare_runs.py OLD_MFSD NEW_MFSD"""
+import csv
+import os
+import subprocess
+import sys
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+CASES = [
+    ("oscillating_plate", "configs/oscillating_plate_2d.json", ["solver.end_time=0.3"]),
+    ("bending_column", "configs/bending_column_3d.json", ["solver.end_time=0.5", "constants.H_over_dp=6"]),
+    ("twisting_column", "configs/twisting_column_3d.json", ["solver.end_time=0.2", "constants.H_over_dp=6"]),
+]
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    worst_all = 0.0
+    for name, scene, sets in CASES:
+        outs = []
+        for tag, binary in (("old", sys.argv[1]), ("new", sys.argv[2])):
+            out = os.path.join(ROOT, "out", "compare", f"{name}_{tag}")
+            cmd = [binary, "run", os.path.join(ROOT, scene), "-o", out, "-q", "--threads", "1"]
+            for s in sets:
+                cmd += ["--set", s]
+            subprocess.run(cmd, check=True)
+            outs.append(out)
+        a, b = (rows(os.path.join(o, "probes.csv")) for o in outs)
+        if len(a) != len(b):
+            print(f"{name}: different number of probe rows ({len(a)} vs {len(b)})")
+            worst_all = float("inf")
+            continue
+        worst, key = 0.0, None
+        for ra, rb in zip(a, b):
+            for k in ra:
+                if k == "time":
+                    continue
+                d = abs(float(ra[k]) - float(rb[k])) / (1.0 + abs(float(ra[k])))
+                if d > worst:
+                    worst, key = d, k
+        ea, eb = (rows(os.path.join(o, "energies.csv"))[-1]["total"] for o in outs)
+        de = abs(float(ea) - float(eb)) / abs(float(ea))
+        print(f"{name}: {len(a)} probe rows, largest relative difference {worst:.2e} ({key}); "
+              f"final total energy {ea} vs {eb} ({de:.2e})")
+        worst_all = max(worst_all, worst, de)
+    print(f"largest relative difference: {worst_all:.2e} (probes.csv and energies.csv print 10 digits)")
+
+
+if __name__ == "__main__":
+    main()
