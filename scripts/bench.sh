@@ -17,6 +17,7 @@ if [[ $suite == micro ]]; then
   out="$MFSD_ROOT/bench/results/micro-$(date +%F).json"
   "$exe" --benchmark_out="$out" --benchmark_out_format=json "$@"
   mfsd_log "wrote ${out#$MFSD_ROOT/}"
+  python3 "$MFSD_ROOT/bench/micro_table.py" "$out"
   exit 0
 fi
 exec python3 "$MFSD_ROOT/bench/run.py" "$suite" "$@"

@@ -13,14 +13,16 @@ import bench_lib as b
 
 
 def model_bytes(stage, R, pairs_per_particle, D=3):
-    """Streaming bytes per particle-step of a stage (3-D, genog, neo-Hookean)."""
-    vec, mat, index, offset = D * R, D * D * R, 4, 8
-    if stage == "force":  # pairs: j, grad, stretch; reads Q S F^-1 u G v, writes a v
-        return pairs_per_particle * (index + vec + R) + offset + 3 * mat + 3 * vec + 2 * vec
+    """Streaming bytes per particle-step of a stage (3-D, genog, neo-Hookean,
+    CPU backend: the stress stage writes the packed neighbour record of 28
+    reals (columns of Q and F^-1, u) that the force stage reads)."""
+    vec, mat, index, offset, record = D * R, D * D * R, 4, 8, 28 * R
+    if stage == "force":  # pairs: j, grad, stretch; reads record, S, G, v; writes a, v
+        return pairs_per_particle * (index + vec + R) + offset + record + mat + 2 * vec + 2 * vec
     if stage == "deformation_rate":  # pairs: j, grad; reads v G B0 F u X a, writes dF F u
         return pairs_per_particle * (index + vec) + offset + 2 * vec + 2 * mat + 2 * vec + 2 * vec + 2 * mat
-    if stage == "stress":  # reads dF F u v, writes F u Q S F^-1
-        return 2 * mat + 2 * vec + 4 * mat + vec
+    if stage == "stress":  # reads dF F u v, writes F u S record
+        return 2 * mat + 2 * vec + mat + vec + mat + record
     raise ValueError(stage)
 
 
