@@ -17,9 +17,12 @@ int main(int argc, char** argv) {
   int repeats = 20;
   int threads = omp_get_max_threads();
   for (int k = 1; k + 1 < argc; k += 2) {
-    if (!std::strcmp(argv[k], "--threads")) threads = std::atoi(argv[k + 1]);
-    else if (!std::strcmp(argv[k], "--elements")) elements = std::atol(argv[k + 1]);
-    else if (!std::strcmp(argv[k], "--repeats")) repeats = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--threads"))
+      threads = std::atoi(argv[k + 1]);
+    else if (!std::strcmp(argv[k], "--elements"))
+      elements = std::atol(argv[k + 1]);
+    else if (!std::strcmp(argv[k], "--repeats"))
+      repeats = std::atoi(argv[k + 1]);
     else {
       std::fprintf(stderr, "mfsd_triad: unknown option %s\n", argv[k]);
       return 2;
@@ -50,8 +53,9 @@ int main(int argc, char** argv) {
   }
   std::vector<double> sorted = gbs;
   std::sort(sorted.begin(), sorted.end());
-  std::printf("{\"threads\": %d, \"elements\": %ld, \"bytes_per_element\": 24, \"repeats\": %d, "
-              "\"best_gb_per_s\": %.3f, \"median_gb_per_s\": %.3f}\n",
-              threads, elements, repeats, sorted.back(), sorted[sorted.size() / 2]);
+  std::printf(
+      "{\"threads\": %d, \"elements\": %ld, \"bytes_per_element\": 24, \"repeats\": %d, "
+      "\"best_gb_per_s\": %.3f, \"median_gb_per_s\": %.3f}\n",
+      threads, elements, repeats, sorted.back(), sorted[sorted.size() / 2]);
   return 0;
 }

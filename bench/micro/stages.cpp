@@ -145,21 +145,20 @@ void BM_Force(benchmark::State& state) {
   Block<Real> block;
   block.packed = state.range(0) != 0;
   parallel_for<Cpu>(block.n, block.stress(Real(0)));
-  AccelerationFunctor<3, Real, HourglassGenog> f{block.pairs.view(),
-                                                 block.template f<Mat<3, Real>>(field::force_stress),
-                                                 nullptr,
-                                                 block.template f<Mat<3, Real>>(field::shear_stress),
-                                                 block.template f<Mat<3, Real>>(field::inverse_deformation_gradient),
-                                                 block.template f<Vec<3, Real>>(field::displacement),
-                                                 block.packed ? block.template f<GenogNeighborRecord<Real>>(
-                                                                    field::genog_neighbor_record)
-                                                              : nullptr,
-                                                 Real(1.0 / 1100),
-                                                 Vec<3, Real>::zero(),
-                                                 GenogWeight<Real>{GenogLimiter::capped, Real(0)},
-                                                 Real(0),
-                                                 block.template f<Vec<3, Real>>(field::acceleration),
-                                                 block.template f<Vec<3, Real>>(field::velocity)};
+  AccelerationFunctor<3, Real, HourglassGenog> f{
+      block.pairs.view(),
+      block.template f<Mat<3, Real>>(field::force_stress),
+      nullptr,
+      block.template f<Mat<3, Real>>(field::shear_stress),
+      block.template f<Mat<3, Real>>(field::inverse_deformation_gradient),
+      block.template f<Vec<3, Real>>(field::displacement),
+      block.packed ? block.template f<GenogNeighborRecord<Real>>(field::genog_neighbor_record) : nullptr,
+      Real(1.0 / 1100),
+      Vec<3, Real>::zero(),
+      GenogWeight<Real>{GenogLimiter::capped, Real(0)},
+      Real(0),
+      block.template f<Vec<3, Real>>(field::acceleration),
+      block.template f<Vec<3, Real>>(field::velocity)};
   for (auto _ : state) parallel_for<Cpu>(block.n, f);
   report(state, block.n);
 }

@@ -24,7 +24,8 @@ using namespace mfsd;
 namespace {
 
 const char* kUsage =
-    "mfsd " MFSD_VERSION " - meshfree solid dynamics (total-Lagrangian SPH with hourglass control)\n"
+    "mfsd " MFSD_VERSION
+    " - meshfree solid dynamics (total-Lagrangian SPH with hourglass control)\n"
     "\n"
     "usage:\n"
     "  mfsd run [SCENE.json] [options]   run a scene (without SCENE: the built-in oscillating plate)\n"
@@ -61,8 +62,8 @@ void print_version() {
 
 int command_check(int argc, char** argv) {
   cxxopts::Options opts("mfsd check", "validate a scene");
-  opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())(
-      "scene", "scene file", cxxopts::value<std::string>());
+  opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())("scene", "scene file",
+                                                                                    cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (!r.count("scene")) throw UsageError("mfsd check: a scene file is required (mfsd check SCENE.json)");
@@ -79,8 +80,8 @@ int command_run(int argc, char** argv, const std::string& command_line) {
   cxxopts::Options opts("mfsd run", "run a scene");
   opts.add_options()("o,output", "", cxxopts::value<std::string>())("backend", "", cxxopts::value<std::string>())(
       "threads", "", cxxopts::value<int>())("precision", "", cxxopts::value<std::string>())(
-      "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())("warmup-steps", "", cxxopts::value<long>())(
-      "q,quiet", "")("scene", "", cxxopts::value<std::string>());
+      "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
+      "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");

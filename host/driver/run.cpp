@@ -1,10 +1,9 @@
 #include "host/driver/run.hpp"
 
-#include <algorithm>
-
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -191,9 +190,10 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     char wall[32];
     format_duration(status.wall_seconds, wall, sizeof wall);
     const double ps = double(setup.particles) * double(status.steps - status.warmup_steps);
-    std::printf("mfsd: %s: %ld particles, %ld steps to t = %.6g s in %s (%.3g particle-steps/s; set-up %.2fs, output %.2fs)\n",
-                status.state.c_str(), setup.particles, status.steps, status.simulated_time, wall,
-                step_seconds > 0 ? ps / step_seconds : 0.0, status.setup_seconds, output_seconds);
+    std::printf(
+        "mfsd: %s: %ld particles, %ld steps to t = %.6g s in %s (%.3g particle-steps/s; set-up %.2fs, output %.2fs)\n",
+        status.state.c_str(), setup.particles, status.steps, status.simulated_time, wall,
+        step_seconds > 0 ? ps / step_seconds : 0.0, status.setup_seconds, output_seconds);
     const double total = solver->timers().total();
     std::printf("mfsd: stage               share   us/step   ns/particle-step\n");
     for (auto& st : solver->timers().stages())

@@ -55,9 +55,9 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
   j["command"] = options.command_line;
   j["scene_file"] = doc.source_name;
   j["backend"] = options.solver.backend;
-  j["threads"] = options.solver.backend == "cpu" ? (options.solver.threads > 0 ? options.solver.threads
-                                                                              : omp_get_max_threads())
-                                                 : 0;
+  j["threads"] = options.solver.backend == "cpu"
+                     ? (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads())
+                     : 0;
   j["precision"] = to_string(options.solver.precision);
   j["dimension"] = doc.scene.dimension;
   j["particles"] = setup.particles;
@@ -117,9 +117,9 @@ void write_timing_json(const std::string& dir, const SetupReport& setup, const S
   }
   j["bytes_per_particle"] = setup.bytes_per_particle;
   j["backend"] = options.solver.backend;
-  j["threads"] = options.solver.backend == "cpu" ? (options.solver.threads > 0 ? options.solver.threads
-                                                                              : omp_get_max_threads())
-                                                 : 0;
+  j["threads"] = options.solver.backend == "cpu"
+                     ? (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads())
+                     : 0;
   j["precision"] = to_string(options.solver.precision);
   Json stages = Json::array();
   const double total = timers.total();

@@ -15,8 +15,8 @@ struct RunStatus {
   double simulated_time = 0;
   std::string message;
   double setup_seconds = 0, step_seconds = 0, output_seconds = 0, wall_seconds = 0;
-  long warmup_steps = 0;             // steps before timing started
-  std::vector<double> step_times;    // wall seconds of each timed step
+  long warmup_steps = 0;           // steps before timing started
+  std::vector<double> step_times;  // wall seconds of each timed step
 };
 
 Json machine_description();

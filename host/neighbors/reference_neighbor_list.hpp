@@ -25,8 +25,8 @@ struct ReferenceNeighborList {
   PairIndex pairs() const { return PairIndex(grad.size()); }
 
   ReferencePairs<D, Real> view() const {
-    return ReferencePairs<D, Real>{raw(offsets),      raw(neighbor), raw(grad), raw(stretch),
-                                   raw(gradient_sum), beta.empty() ? nullptr : raw(beta)};
+    return ReferencePairs<D, Real>{raw(offsets), raw(neighbor),     raw(grad),
+                                   raw(stretch), raw(gradient_sum), beta.empty() ? nullptr : raw(beta)};
   }
 };
 
@@ -56,8 +56,8 @@ CellGrid<D> make_cell_grid(const double* lo, const double* hi, double cell_size,
 // reference_position_double, the body ids and the volumes.
 template <class B, int D, class Real>
 ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& particles,
-                                                                 const std::vector<BodySearch>& bodies,
-                                                                 bool reorder, bool with_beta) {
+                                                                const std::vector<BodySearch>& bodies, bool reorder,
+                                                                bool with_beta) {
   const Index n = particles.size();
   // Grid over the reference bounding box, cell edge = the largest support radius.
   const auto host_x = to_host<B>(particles.template buffer<Vec<D, double>>(field::reference_position_double));
@@ -84,9 +84,13 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
   DeviceVector<B, Index> end(size_t(grid.cells_per_body) * bodies.size(), 0);
   parallel_for<B>(n, CellRangeFunctor{raw(keys), n, raw(start), raw(end)});
 
-  CellNeighborhood<D> hood{grid,       particles.template get<Vec<D, double>>(field::reference_position_double),
+  CellNeighborhood<D> hood{grid,
+                           particles.template get<Vec<D, double>>(field::reference_position_double),
                            particles.template get<int>(field::body),
-                           raw(start), raw(end), reorder ? nullptr : raw(order), 0.0};
+                           raw(start),
+                           raw(end),
+                           reorder ? nullptr : raw(order),
+                           0.0};
   DeviceVector<B, Index> count(size_t(n), 0);
   for (const auto& b : bodies) {
     hood.radius2 = std::pow(2.0 * b.smoothing_length, 2);

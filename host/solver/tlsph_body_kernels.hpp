@@ -87,16 +87,16 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
   }
 
   void stress_observables(const TlsphViews<D, Real>& v) const override {
-    parallel_for<B>(s_.range.begin, s_.range.end,
-                    StressObservablesFunctor<D, Real, Material>{material_, v.deformation_gradient, v.von_mises,
-                                                                v.jacobian});
+    parallel_for<B>(
+        s_.range.begin, s_.range.end,
+        StressObservablesFunctor<D, Real, Material>{material_, v.deformation_gradient, v.von_mises, v.jacobian});
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
-    return transform_reduce<B>(s_.range.begin, s_.range.end,
-                               EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.velocity,
-                                                                v.volume, Real(s_.density)},
-                               EnergySums{0.0, 0.0, {0.0, 0.0, 0.0}}, EnergySumsPlus{});
+    return transform_reduce<B>(
+        s_.range.begin, s_.range.end,
+        EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.velocity, v.volume, Real(s_.density)},
+        EnergySums{0.0, 0.0, {0.0, 0.0, 0.0}}, EnergySumsPlus{});
   }
 
  private:

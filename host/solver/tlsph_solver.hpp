@@ -87,8 +87,7 @@ class TlsphSolver final : public Solver {
       : scene_(scene), init_(init), particles_(Index(init.size())) {
     for (const auto& p : scene.probes)
       for (const auto& f : p.fields) probes_need_stress_ = probes_need_stress_ || f == "von_mises" || f == "J";
-    for (const char* name : {"stress", "force", "boundary", "deformation_rate", "time_step"})
-      timers_.id(name);
+    for (const char* name : {"stress", "force", "boundary", "deformation_rate", "time_step"}) timers_.id(name);
   }
 
   void initialize() override {
@@ -101,15 +100,15 @@ class TlsphSolver final : public Solver {
       ranges_.push_back(BodyRange{Index(init_.body_range[b].begin), Index(init_.body_range[b].end)});
       search.push_back(BodySearch{ranges_.back(), props(b).h});
     }
-    const bool paper_limiter = scene_.solver.hourglass == HourglassControl::genog &&
-                               scene_.solver.genog_limiter == GenogLimiter::paper;
+    const bool paper_limiter =
+        scene_.solver.hourglass == HourglassControl::genog && scene_.solver.genog_limiter == GenogLimiter::paper;
     pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter);
     particles_.remove(field::reference_position_double);
 
     auto* B0 = particles_.template add<Mat<D, Real>>(field::correction_matrix);
     DeviceVector<B, unsigned char> regularized(size_t(n), 0);
-    parallel_for<B>(n, CorrectionMatrixFunctor<D, Real>{pairs_.view(), B0, raw(regularized),
-                                                        Real(scene_.solver.correction_floor)});
+    parallel_for<B>(
+        n, CorrectionMatrixFunctor<D, Real>{pairs_.view(), B0, raw(regularized), Real(scene_.solver.correction_floor)});
     report_.regularized_corrections =
         long(thrust::count(BackendTraits<B>::policy(), regularized.begin(), regularized.end(), (unsigned char)1));
 
@@ -119,10 +118,8 @@ class TlsphSolver final : public Solver {
     particles_.template add<Vec<D, Real>>(field::acceleration);
     particles_.template add<Mat<D, Real>>(field::force_stress);
     particles_.template add<Mat<D, Real>>(field::inverse_deformation_gradient);  // genog + indicator scratch
-    if (scene_.solver.hourglass == HourglassControl::laplacian)
-      particles_.template add<Real>(field::shear_coefficient);
-    if (scene_.solver.hourglass == HourglassControl::genog)
-      particles_.template add<Mat<D, Real>>(field::shear_stress);
+    if (scene_.solver.hourglass == HourglassControl::laplacian) particles_.template add<Real>(field::shear_coefficient);
+    if (scene_.solver.hourglass == HourglassControl::genog) particles_.template add<Mat<D, Real>>(field::shear_stress);
     // The packed neighbour record of the vectorized CPU force loop (3-D genog).
     if (scene_.solver.hourglass == HourglassControl::genog && D == 3 && std::is_same<B, Cpu>::value)
       particles_.template add<GenogNeighborRecord<Real>>(field::genog_neighbor_record);
@@ -194,8 +191,9 @@ class TlsphSolver final : public Solver {
     });
     StepStatistics<Real> stats;
     run("deformation_rate", [&] {
-      RateHalfStepFunctor<D, Real> f{v_.pairs,        v_.velocity, v_.correction, v_.deformation_rate,
-                                     v_.deformation_gradient, v_.displacement, half_dt, statistics_functor()};
+      RateHalfStepFunctor<D, Real> f{
+          v_.pairs,        v_.velocity, v_.correction,       v_.deformation_rate, v_.deformation_gradient,
+          v_.displacement, half_dt,     statistics_functor()};
       stats = transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), n}, StepStatisticsCombine<Real>{});
     });
     run("time_step", [&] {
@@ -253,11 +251,10 @@ class TlsphSolver final : public Solver {
     }
     compute_hourglass_indicator();
     const Index n = particles_.size();
-    e.hourglass_max = double(transform_reduce<B>(0, n, ReadScalarReal<Real>{v_.hourglass_indicator}, Real(0),
-                                                 MaxPlus<Real>{}));
+    e.hourglass_max =
+        double(transform_reduce<B>(0, n, ReadScalarReal<Real>{v_.hourglass_indicator}, Real(0), MaxPlus<Real>{}));
     e.hourglass_mean =
-        n ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator}, 0.0, thrust::plus<double>{}) / n
-          : 0.0;
+        n ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator}, 0.0, thrust::plus<double>{}) / n : 0.0;
     return e;
   }
 
@@ -268,8 +265,8 @@ class TlsphSolver final : public Solver {
     if (probes_need_stress_)
       for (auto& k : bodies_) k->stress_observables(v_);
     parallel_for<B>(Index(probe_index_.size()),
-                    ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement,
-                                                v_.velocity, v_.von_mises, v_.jacobian, raw(probe_buffer_)});
+                    ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement, v_.velocity,
+                                                v_.von_mises, v_.jacobian, raw(probe_buffer_)});
     const auto h = to_host<B>(probe_buffer_);
     for (size_t k = 0; k < out.size(); ++k) {
       const double w = 1.0 / double(probe_offsets_[k + 1] - probe_offsets_[k]);
@@ -465,8 +462,8 @@ class TlsphSolver final : public Solver {
   void compute_hourglass_indicator() {
     const Index n = particles_.size();
     parallel_for<B>(n, InverseDeformationFunctor<D, Real>{v_.deformation_gradient, v_.inverse_F});
-    parallel_for<B>(n, HourglassIndicatorFunctor<D, Real>{v_.pairs, v_.inverse_F, v_.displacement,
-                                                          v_.hourglass_indicator});
+    parallel_for<B>(
+        n, HourglassIndicatorFunctor<D, Real>{v_.pairs, v_.inverse_F, v_.displacement, v_.hourglass_indicator});
   }
 
   void compute_observables() {

@@ -19,9 +19,9 @@ struct TlsphViews {
   Mat<D, Real>* deformation_rate;
   const Mat<D, Real>* correction;
   Mat<D, Real>* force_stress;
-  Real* shear_coefficient;      // laplacian bodies only (else null)
-  Mat<D, Real>* shear_stress;   // genog bodies only
-  Mat<D, Real>* inverse_F;      // genog bodies, and scratch for the indicator
+  Real* shear_coefficient;                     // laplacian bodies only (else null)
+  Mat<D, Real>* shear_stress;                  // genog bodies only
+  Mat<D, Real>* inverse_F;                     // genog bodies, and scratch for the indicator
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU backend, else null
   Real* hourglass_indicator;
   Real* von_mises;

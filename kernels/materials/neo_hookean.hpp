@@ -33,15 +33,14 @@ struct NeoHookean {
   MFSD_HD Mat<D, Real> kirchhoff(const Mat<D, Real>& F) const {
     const Real J = det(F);
     Mat<D, Real> tau = deviator(mul_transposed(F, F)) * shear_coefficient(J);  // G dev(b_bar), eq. 8
-    return tau.add_diagonal(volumetric_kirchhoff(J));                        // eq. 7
+    return tau.add_diagonal(volumetric_kirchhoff(J));                          // eq. 7
   }
 
   // Strain energy per reference volume (seed 000 eq. 4-6).
   MFSD_HD Real strain_energy_density(const Mat<D, Real>& F) const {
     const Real J = det(F);
     const Real tr_b_bar = trace(mul_transposed(F, F)) * isochoric_factor(J);
-    return Real(0.5) * K * (Real(0.5) * (J * J - Real(1)) - math::log(J)) +
-           Real(0.5) * G * (tr_b_bar - Real(D));
+    return Real(0.5) * K * (Real(0.5) * (J * J - Real(1)) - math::log(J)) + Real(0.5) * G * (tr_b_bar - Real(D));
   }
 };
 

@@ -36,8 +36,7 @@ struct GenogWeight {
 
   MFSD_HD Real operator()(Real e_hat_norm, Real beta) const {
     const Real excess = e_hat_norm - threshold;
-    if (limiter == GenogLimiter::paper)
-      return alpha_d * beta * math::clamp(excess, Real(0), Real(1));  // eq. 33
+    if (limiter == GenogLimiter::paper) return alpha_d * beta * math::clamp(excess, Real(0), Real(1));  // eq. 33
     return math::min(Real(10) * math::max(excess, Real(0)), Real(1));
   }
 };
@@ -45,16 +44,16 @@ struct GenogWeight {
 template <int D, class Real, class Hourglass>
 struct AccelerationFunctor {
   ReferencePairs<D, Real> pairs;
-  const Mat<D, Real>* force_stress;     // M (none, laplacian) or Q = M + S (genog)
-  const Real* shear_coefficient;        // s (laplacian)
-  const Mat<D, Real>* shear_stress;     // S (genog)
-  const Mat<D, Real>* inverse_F;        // F^{-1} (genog)
-  const Vec<D, Real>* displacement;     // u
+  const Mat<D, Real>* force_stress;                  // M (none, laplacian) or Q = M + S (genog)
+  const Real* shear_coefficient;                     // s (laplacian)
+  const Mat<D, Real>* shear_stress;                  // S (genog)
+  const Mat<D, Real>* inverse_F;                     // F^{-1} (genog)
+  const Vec<D, Real>* displacement;                  // u
   const GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU: Q, F^{-1}, u packed
   Real inv_rho0;
-  Vec<D, Real> body_acceleration;       // gravity
+  Vec<D, Real> body_acceleration;  // gravity
   GenogWeight<Real> genog_weight;
-  Real dt;                              // velocity update v += dt a; 0 leaves v alone
+  Real dt;  // velocity update v += dt a; 0 leaves v alone
   Vec<D, Real>* acceleration;
   Vec<D, Real>* velocity;
 

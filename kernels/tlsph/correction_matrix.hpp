@@ -17,15 +17,15 @@ namespace mfsd {
 template <int D, class Real>
 struct CorrectionMatrixFunctor {
   ReferencePairs<D, Real> pairs;
-  Mat<D, Real>* correction;       // B0
-  unsigned char* regularized;     // 1 where the floor was applied
+  Mat<D, Real>* correction;    // B0
+  unsigned char* regularized;  // 1 where the floor was applied
   Real eigenvalue_floor;
 
   MFSD_HD void operator()(Index i) const {
     Mat<D, Real> A = Mat<D, Real>::zero();
     for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
       const Vec<D, Real> g = pairs.grad[p];
-      if (pairs.stretch[p] == Real(0)) continue;  // dW = 0 at the support edge
+      if (pairs.stretch[p] == Real(0)) continue;   // dW = 0 at the support edge
       const Real w = -Real(1) / pairs.stretch[p];  // r0 / (V0_j |dW|)
       for (int a = 0; a < D; ++a)
         for (int b = 0; b < D; ++b) A.m[a][b] += w * g.v[a] * g.v[b];

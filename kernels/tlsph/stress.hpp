@@ -35,10 +35,10 @@ struct StressFunctor {
   const Vec<D, Real>* velocity;
   const Mat<D, Real>* rate;
   const Mat<D, Real>* correction;
-  Mat<D, Real>* force_stress;  // M, or Q = M + S (genog)
-  Real* shear_coefficient;     // s (laplacian)
-  Mat<D, Real>* shear_stress;  // S (genog)
-  Mat<D, Real>* inverse_F;     // F^{-1} (genog)
+  Mat<D, Real>* force_stress;                  // M, or Q = M + S (genog)
+  Real* shear_coefficient;                     // s (laplacian)
+  Mat<D, Real>* shear_stress;                  // S (genog)
+  Mat<D, Real>* inverse_F;                     // F^{-1} (genog)
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU, else null
 
   MFSD_HD void operator()(Index i) const {
@@ -59,11 +59,11 @@ struct StressFunctor {
       if constexpr (std::is_same<Hourglass, HourglassLaplacian>::value) {
         tau = tau_d;
         tau.add_diagonal(material.volumetric_kirchhoff(J) - zeta / Real(D) * c * tr_b);  // eq. 28
-        shear_coefficient[i] = zeta * c;                                                   // eq. 27
+        shear_coefficient[i] = zeta * c;                                                 // eq. 27
       } else {
         tau = tau_d;
         tau.add_diagonal(material.volumetric_kirchhoff(J) - c * tr_b / Real(D));  // seed 000 tau_r
-        S = F * c;  // c b F^{-T} = c F
+        S = F * c;                                                                // c b F^{-T} = c F
         if (correction_in_force) S = S * correction[i];
         shear_stress[i] = S;
         if (!neighbor_record) inverse_F[i] = F_inv;

@@ -167,7 +167,8 @@ TEST_F(Cli, CheckPrintsTheResolvedScene) {
 }
 
 TEST_F(Cli, MalformedJsonNamesLineAndColumn) {
-  expect_input_error("run " + scene("\"dimension\": 2,", "\"dimension\": 2,,") + " -o " + out(), "scene.json:3:18: invalid JSON");
+  expect_input_error("run " + scene("\"dimension\": 2,", "\"dimension\": 2,,") + " -o " + out(),
+                     "scene.json:3:18: invalid JSON");
 }
 
 TEST_F(Cli, UnknownKey) {
@@ -198,8 +199,7 @@ TEST_F(Cli, SmoothingLengthRatioOutOfRange) {
 }
 
 TEST_F(Cli, EmptyBody) {
-  expect_input_error("run " + scene("\"spacing\": 0.01", "\"spacing\": 1.0") + " -o " + out(),
-                     "/bodies/0/geometry");
+  expect_input_error("run " + scene("\"spacing\": 0.01", "\"spacing\": 1.0") + " -o " + out(), "/bodies/0/geometry");
 }
 
 TEST_F(Cli, ProbeOutsideEveryBody) {
@@ -210,8 +210,7 @@ TEST_F(Cli, ProbeOutsideEveryBody) {
 TEST_F(Cli, BadExpression) {
   expect_input_error("run " + scene("\"y\": \"x0\"", "\"y\": \"x0 +* 2\"") + " -o " + out(),
                      "/bodies/0/initial_velocity/y");
-  expect_input_error("run " + scene("\"y\": \"x0\"", "\"y\": \"1/(x0 - 0.005)\"") + " -o " + out(),
-                     "division by zero");
+  expect_input_error("run " + scene("\"y\": \"x0\"", "\"y\": \"1/(x0 - 0.005)\"") + " -o " + out(), "division by zero");
 }
 
 TEST_F(Cli, UnwritableOutputFolder) {
@@ -224,8 +223,9 @@ TEST_F(Cli, UnwritableOutputFolder) {
 
 TEST_F(Cli, NumericalFailureStopsWithExitCode3AndKeepsLastSnapshot) {
   // Tight bounds: the tip leaves them after a few steps.
-  const std::string s = scene("\"output\": {\"interval\": 0.001}",
-                              "\"output\": {\"interval\": 0.0005}, \"bounds\": {\"min\": [-1, -1], \"max\": [1, 0.04501]}");
+  const std::string s =
+      scene("\"output\": {\"interval\": 0.001}",
+            "\"output\": {\"interval\": 0.0005}, \"bounds\": {\"min\": [-1, -1], \"max\": [1, 0.04501]}");
   const Result r = run("run " + s + " -o " + out());
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("position"), std::string::npos) << r.output;
