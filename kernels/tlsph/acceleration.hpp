@@ -19,6 +19,7 @@
 #include <type_traits>
 
 #include "kernels/core/mat.hpp"
+#include "kernels/tlsph/e_hat.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/hourglass.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
@@ -61,10 +62,15 @@ struct AccelerationFunctor {
   static constexpr bool genog = std::is_same<Hourglass, HourglassGenog>::value;
 
   MFSD_HD void operator()(Index i) const {
-    if constexpr (genog && D == 3) {
+    if constexpr (genog && D == 3)
       genog_particle_3d(i);
-      return;
-    }
+    else
+      particle(i);
+  }
+
+ private:
+  // none, laplacian, and genog in 2-D: one pass over the pairs.
+  MFSD_HD void particle(Index i) const {
     Vec<D, Real> sum = Vec<D, Real>::zero();  // sum_j Q_j g_ij (+ laplacian and genog terms)
     [[maybe_unused]] Vec<D, Real> ui;
     [[maybe_unused]] Real si;
@@ -89,8 +95,7 @@ struct AccelerationFunctor {
         sum += t * (si + shear_coefficient[j]);  // seed 003 eq. 27
       }
       if constexpr (genog) {
-        const Vec<D, Real> t = g + (ui - displacement[j]) * pairs.stretch[p];
-        const Vec<D, Real> h = (Finv_i + inverse_F[j]) * t * Real(0.5) - g;  // dW V0 e_hat, eq. 31
+        const Vec<D, Real> h = scaled_e_hat(Finv_i, inverse_F[j], ui, displacement[j], g, pairs.stretch[p]);  // eq. 31
         const Real h2 = squared_norm(h), g2 = squared_norm(g);
         if (h2 > GenogWeight<Real>::threshold * GenogWeight<Real>::threshold * g2) {
           const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
@@ -101,7 +106,6 @@ struct AccelerationFunctor {
     finish(i, sum);
   }
 
- private:
   MFSD_HD void finish(Index i, const Vec<D, Real>& sum) const { finish(i, force_stress[i], sum); }
 
   MFSD_HD void finish(Index i, const Mat<D, Real>& Qi, const Vec<D, Real>& sum) const {
@@ -226,8 +230,8 @@ struct AccelerationFunctor {
       for (PairIndex p = begin; p < end; ++p) {
         const Index j = pairs.neighbor[p];
         const Vec<D, Real> g = pairs.grad[p];
-        const Vec<D, Real> t = g + (ui - displacement[j]) * pairs.stretch[p];
-        const Vec<D, Real> h = (Fi + (neighbor_record ? neighbor_record[j].F_inv() : inverse_F[j])) * t * Real(0.5) - g;
+        const Mat<D, Real> Fj = neighbor_record ? neighbor_record[j].F_inv() : inverse_F[j];
+        const Vec<D, Real> h = scaled_e_hat(Fi, Fj, ui, displacement[j], g, pairs.stretch[p]);
         const Real h2 = squared_norm(h), g2 = squared_norm(g);
         if (h2 > thr2 * g2) {
           const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));

@@ -36,9 +36,10 @@ struct DeformationRateFunctor {
   MFSD_HD void operator()(Index i) const { rate[i] = deformation_rate(pairs, velocity, correction[i], i); }
 };
 
-// The step's last pass, one read of every particle: dF/dt at the new velocity,
-// the second half step F += dt/2 dF/dt, u += dt/2 v (seed 000 eq. 37), and the
-// time-step statistics of the new state (step_statistics.hpp), reduced.
+// The step's last pass over the particles, fused: dF/dt at the new velocity,
+// the second half step F += dt/2 dF/dt, u += dt/2 v (seed 000 eq. 37), and
+// each particle's time-step statistics of the new state (step_statistics.hpp),
+// which the host combines with a reduction.
 template <int D, class Real>
 struct RateHalfStepFunctor {
   ReferencePairs<D, Real> pairs;

@@ -6,13 +6,13 @@
 
 namespace mfsd {
 
-struct HourglassNone {      // standard TLSPH (seed 000 eq. 20)
+struct HourglassNone {  // standard TLSPH (seed 000 eq. 20)
   static constexpr const char* name = "none";
 };
-struct HourglassLaplacian { // hourglass-free Laplacian shear (seed 003 eq. 25-29)
+struct HourglassLaplacian {  // hourglass-free Laplacian shear (seed 003 eq. 25-29)
   static constexpr const char* name = "laplacian";
 };
-struct HourglassGenog {     // generalized essentially non-hourglass (seed 000 eq. 25-34)
+struct HourglassGenog {  // generalized essentially non-hourglass (seed 000 eq. 25-34)
   static constexpr const char* name = "genog";
 };
 

@@ -7,6 +7,7 @@
 // are left out of the mean.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/tlsph/e_hat.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
 
 namespace mfsd {
@@ -37,8 +38,7 @@ struct HourglassIndicatorFunctor {
       const Vec<D, Real> g = pairs.grad[p];
       const Real g2 = squared_norm(g);
       if (g2 == Real(0)) continue;
-      const Vec<D, Real> t = g + (ui - displacement[j]) * pairs.stretch[p];
-      const Vec<D, Real> h = (Fi_inv + inverse_F[j]) * t * Real(0.5) - g;
+      const Vec<D, Real> h = scaled_e_hat(Fi_inv, inverse_F[j], ui, displacement[j], g, pairs.stretch[p]);
       sum += math::sqrt(squared_norm(h) / g2);
       ++count;
     }

@@ -71,14 +71,14 @@ struct StressFunctor {
     }
     Mat<D, Real> M = mul_transposed(tau, F_inv);  // tau F^{-T}
     if (correction_in_force) M = M * correction[i];
-    if constexpr (std::is_same<Hourglass, HourglassGenog>::value && D == 3) {
+    if constexpr (std::is_same<Hourglass, HourglassGenog>::value) {
       M += S;
-      if (neighbor_record) {
-        neighbor_record[i].set(M, F_inv, displacement[i]);
-        return;
+      if constexpr (D == 3) {
+        if (neighbor_record) {
+          neighbor_record[i].set(M, F_inv, displacement[i]);
+          return;
+        }
       }
-    } else if constexpr (std::is_same<Hourglass, HourglassGenog>::value) {
-      M += S;
     }
     force_stress[i] = M;
   }
