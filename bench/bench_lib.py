@@ -15,6 +15,7 @@ import mfsd_runs as m  # noqa: E402  (installs numpy/matplotlib when missing)
 ROOT = m.ROOT
 BUILD = os.path.dirname(m.BINARY)
 TRIAD = os.environ.get("MFSD_TRIAD", os.path.join(BUILD, "mfsd_triad"))
+FMA_PEAK = os.path.join(BUILD, "mfsd_fma_peak")
 OUT = os.path.join(ROOT, "out", "bench")
 RESULTS = os.path.join(BENCH, "results")
 BENDING = "configs/bending_column_3d.json"
@@ -83,6 +84,13 @@ def triad(threads, repeats=20):
     out = subprocess.run([TRIAD, "--threads", str(threads), "--repeats", str(repeats)], capture_output=True,
                          text=True, check=True).stdout
     return json.loads(out)
+
+
+def fma_peak():
+    """Compute roof of one core (bench/fma_peak.cpp): 4-wide FMA rate and clock; None where not built (non-x86)."""
+    if not os.path.exists(FMA_PEAK):
+        return None
+    return json.loads(subprocess.run([FMA_PEAK], capture_output=True, text=True, check=True).stdout)
 
 
 def result_stem(suite):

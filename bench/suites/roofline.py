@@ -33,6 +33,7 @@ def main(args):
     # The triad is measured before and after the stage runs; the fractions use
     # the higher of the two medians (this shared machine's bandwidth drifts).
     before = {t: b.triad(t) for t in threads}
+    compute = b.fma_peak()
     rows = []
     for precision, R in (("double", 8), ("float", 4)):
         for t in threads:
@@ -62,18 +63,27 @@ def main(args):
         r["triad_gb_per_s"] = bw
         r["fraction_of_triad"] = r["achieved_gb_per_s"] / bw
         r["bandwidth_bound_particle_steps_per_second"] = bw * 1e9 / r["bytes_per_particle_step"]
+        if compute and r["stage"] in ("force", "deformation_rate"):  # core time per pair, in cycles
+            r["core_cycles_per_pair"] = (r["ns_per_particle_step"] * r["threads"] * compute["clock_ghz"] /
+                                         r["neighbors_per_particle"])
     md = ["Triad (median of 20, before / after the stage runs; fractions use the higher): " +
           ", ".join(f"{t} thread{'s' if t > 1 else ''} {before[t]['median_gb_per_s']:.1f} / "
                     f"{after[t]['median_gb_per_s']:.1f} GB/s" for t in threads), "",
           "| precision | threads | stage | bytes/particle-step | ns/particle-step | GB/s | fraction of triad | "
-          "bandwidth bound [M particle-steps/s] |", "|" + "---|" * 8]
+          "bandwidth bound [M particle-steps/s] | core cycles per pair |", "|" + "---|" * 9]
     md += [f"| {r['precision']} | {r['threads']} | {r['stage']} | {r['bytes_per_particle_step']:.0f} | "
            f"{r['ns_per_particle_step']:.1f} | {r['achieved_gb_per_s']:.1f} | {100 * r['fraction_of_triad']:.0f} % | "
-           f"{b.mega(r['bandwidth_bound_particle_steps_per_second']):.1f} |" for r in rows]
+           f"{b.mega(r['bandwidth_bound_particle_steps_per_second']):.1f} | "
+           f"{format(r['core_cycles_per_pair'], '.1f') if 'core_cycles_per_pair' in r else ''} |" for r in rows]
+    if compute:
+        md = [f"Compute roof of one core (bench/fma_peak.cpp): {compute['fma4_per_second'] * 1e-9:.2f} G 4-wide "
+              f"double FMA/s, clock {compute['clock_ghz']:.2f} GHz (dependent FMA chain, latency "
+              f"{compute['assumed_fma_latency']} cycles assumed), {compute['fma4_per_cycle']:.2f} FMA per cycle.",
+              ""] + md
     stem = b.result_stem("roofline")
     plot(rows, threads, stem + ".png")
     md += ["", f"![roofline]({os.path.basename(stem)}.png)", ""]
-    b.write_results("roofline", {"machine": args.machine, "triad": triads, "rows": rows}, "\n".join(md) + "\n",
+    b.write_results("roofline", {"machine": args.machine, "triad": triads, "compute": compute, "rows": rows}, "\n".join(md) + "\n",
                     args.command)
 
 
