@@ -3,8 +3,8 @@
 // same functor as on the GPU).
 #pragma once
 #include <omp.h>
-#include <thrust/execution_policy.h>
 #include <thrust/count.h>
+#include <thrust/execution_policy.h>
 #include <thrust/gather.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>

@@ -6,8 +6,8 @@
 #error "host/backend/cuda.cuh is compiled by nvcc only"
 #endif
 #include <cuda_runtime.h>
-#include <thrust/execution_policy.h>
 #include <thrust/count.h>
+#include <thrust/execution_policy.h>
 #include <thrust/gather.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
@@ -27,8 +27,7 @@
 namespace mfsd {
 
 inline void cuda_check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess)
-    throw std::runtime_error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(e));
+  if (e != cudaSuccess) throw std::runtime_error(std::string("CUDA error in ") + what + ": " + cudaGetErrorString(e));
 }
 
 template <>

@@ -14,9 +14,9 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
   o.precision(6);
   o << "scene '" << s.name << "' from " << doc.source_name << ": valid\n";
   if (!s.description.empty()) o << "  " << s.description << "\n";
-  o << "  dimension " << s.dimension << ", formulation tlsph, hourglass " << to_string(s.solver.hourglass)
-    << ", h/dp " << s.solver.h_over_dp << ", CFL " << s.solver.cfl << ", end time " << s.solver.end_time
-    << " s, precision " << to_string(s.solver.precision) << "\n";
+  o << "  dimension " << s.dimension << ", formulation tlsph, hourglass " << to_string(s.solver.hourglass) << ", h/dp "
+    << s.solver.h_over_dp << ", CFL " << s.solver.cfl << ", end time " << s.solver.end_time << " s, precision "
+    << to_string(s.solver.precision) << "\n";
   o << "  damping factor " << s.solver.damping_factor << " ("
     << (s.solver.damping_form == DampingForm::split ? "split" : "isotropic") << "), sound speed "
     << (s.solver.sound_speed == SoundSpeed::bulk ? "bulk sqrt(K/rho0)" : "p-wave sqrt((K+4G/3)/rho0)")
@@ -33,9 +33,9 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
     }
     dt = std::min(dt, s.solver.cfl * p.h / (p.c0 + vmax));
     o << "  body '" << body.name << "': " << n << " particles (" << P.constrained_count[b] << " clamped), "
-      << to_string(body.material.model) << ", rho0 " << body.material.density << ", E "
-      << body.material.youngs_modulus << ", nu " << body.material.poisson_ratio << ", dp " << body.spacing
-      << ", h " << p.h << ", c0 " << p.c0 << " m/s, max initial speed " << vmax << " m/s\n";
+      << to_string(body.material.model) << ", rho0 " << body.material.density << ", E " << body.material.youngs_modulus
+      << ", nu " << body.material.poisson_ratio << ", dp " << body.spacing << ", h " << p.h << ", c0 " << p.c0
+      << " m/s, max initial speed " << vmax << " m/s\n";
   }
   for (size_t k = 0; k < s.probes.size(); ++k) {
     const auto& members = P.probe_particles[k];

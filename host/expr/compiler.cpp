@@ -47,11 +47,11 @@ struct FunctionInfo {
 };
 
 constexpr FunctionInfo kFunctions[] = {
-    {"sin", Func::sin, 1},     {"cos", Func::cos, 1},     {"tan", Func::tan, 1},     {"cot", Func::cot, 1},
-    {"sinh", Func::sinh, 1},   {"cosh", Func::cosh, 1},   {"tanh", Func::tanh, 1},   {"coth", Func::coth, 1},
-    {"exp", Func::exp, 1},     {"sqrt", Func::sqrt, 1},   {"abs", Func::abs, 1},     {"log", Func::log10, 1},
-    {"ln", Func::ln, 1},       {"asin", Func::asin, 1},   {"acos", Func::acos, 1},   {"atan", Func::atan, 1},
-    {"floor", Func::floor, 1}, {"ceil", Func::ceil, 1},   {"pow", Func::pow, 2},     {"min", Func::min, 2},
+    {"sin", Func::sin, 1},     {"cos", Func::cos, 1},     {"tan", Func::tan, 1},   {"cot", Func::cot, 1},
+    {"sinh", Func::sinh, 1},   {"cosh", Func::cosh, 1},   {"tanh", Func::tanh, 1}, {"coth", Func::coth, 1},
+    {"exp", Func::exp, 1},     {"sqrt", Func::sqrt, 1},   {"abs", Func::abs, 1},   {"log", Func::log10, 1},
+    {"ln", Func::ln, 1},       {"asin", Func::asin, 1},   {"acos", Func::acos, 1}, {"atan", Func::atan, 1},
+    {"floor", Func::floor, 1}, {"ceil", Func::ceil, 1},   {"pow", Func::pow, 2},   {"min", Func::min, 2},
     {"max", Func::max, 2},     {"atan2", Func::atan2, 2},
 };
 
@@ -162,14 +162,34 @@ std::vector<Token> tokenize(const Source& src) {
       }
       Tok kind;
       switch (c) {
-        case '<': case '>': case '+': case '-': case '*': case '/': case '^': kind = Tok::op; break;
-        case '(': kind = Tok::lparen; break;
-        case ')': kind = Tok::rparen; break;
-        case ',': kind = Tok::comma; break;
-        case ';': kind = Tok::semicolon; break;
-        case '=': kind = Tok::assign; break;
-        case '&': src.fail(column, "unexpected character '&' (write 'and')");
-        case '|': src.fail(column, "unexpected character '|' (write 'or')");
+        case '<':
+        case '>':
+        case '+':
+        case '-':
+        case '*':
+        case '/':
+        case '^':
+          kind = Tok::op;
+          break;
+        case '(':
+          kind = Tok::lparen;
+          break;
+        case ')':
+          kind = Tok::rparen;
+          break;
+        case ',':
+          kind = Tok::comma;
+          break;
+        case ';':
+          kind = Tok::semicolon;
+          break;
+        case '=':
+          kind = Tok::assign;
+          break;
+        case '&':
+          src.fail(column, "unexpected character '&' (write 'and')");
+        case '|':
+          src.fail(column, "unexpected character '|' (write 'or')");
         default: {
           const bool printable = std::isprint(static_cast<unsigned char>(c));
           char hex[8];
@@ -192,10 +212,10 @@ struct Node {
   Kind kind;
   int column;
   std::string token;
-  double value = 0.0;      // number
-  int slot = 0;            // variable, local
-  Op op = Op::add;         // binary
-  Func func = Func::sin;   // call
+  double value = 0.0;     // number
+  int slot = 0;           // variable, local
+  Op op = Op::add;        // binary
+  Func func = Func::sin;  // call
   std::vector<std::unique_ptr<Node>> kids;
 };
 using NodePtr = std::unique_ptr<Node>;
@@ -241,8 +261,8 @@ class Parser {
     if (t.kind == Tok::rparen) src_.fail(t.column, "unbalanced ')': there is no '(' to close");
     if (t.kind == Tok::assign) src_.fail(t.column, "unexpected '=' (to compare, write '==')");
     if (t.kind != Tok::end)
-      src_.fail(t.column, "expected an operator or " + describe(tokens_.back(), src_) + " but found " +
-                              describe(t, src_));
+      src_.fail(t.column,
+                "expected an operator or " + describe(tokens_.back(), src_) + " but found " + describe(t, src_));
     return n;
   }
 
@@ -376,8 +396,8 @@ class Parser {
 
   void check_arity(const Token& callee, size_t given, int wanted) const {
     if (static_cast<int>(given) != wanted)
-      src_.fail(callee.column, "'" + callee.text + "' takes " + arguments(wanted) + " but " +
-                                   std::to_string(given) + (given == 1 ? " was" : " were") + " given");
+      src_.fail(callee.column, "'" + callee.text + "' takes " + arguments(wanted) + " but " + std::to_string(given) +
+                                   (given == 1 ? " was" : " were") + " given");
   }
 
   NodePtr parse_primary() {
@@ -392,8 +412,8 @@ class Parser {
       take();
       NodePtr n = parse_or();
       if (peek().kind != Tok::rparen)
-        src_.fail(peek().column, "expected ')' to close the '(' at column " + std::to_string(t.column) +
-                                     " but found " + describe(peek(), src_));
+        src_.fail(peek().column, "expected ')' to close the '(' at column " + std::to_string(t.column) + " but found " +
+                                     describe(peek(), src_));
       take();
       return n;
     }
@@ -420,8 +440,7 @@ class Parser {
     }
     NodePtr n = resolve_name(t);
     if (call) {
-      if (n)
-        src_.fail(peek().column, "'" + t.text + "' is not a function, so it cannot be followed by '('");
+      if (n) src_.fail(peek().column, "'" + t.text + "' is not a function, so it cannot be followed by '('");
       std::vector<std::string> names;
       for (const FunctionInfo& f : kFunctions) names.push_back(f.name);
       src_.fail(t.column, "unknown function '" + t.text + "'; functions: " + join(names) + ", if");
@@ -491,8 +510,7 @@ void make_number(Node& n, double value) {
 }
 
 void check_folded(Status s, const Node& n, const Source& src) {
-  if (s != Status::ok)
-    src.fail(n.column, std::string(status_text(s)) + " in '" + n.token + "' with constant operands");
+  if (s != Status::ok) src.fail(n.column, std::string(status_text(s)) + " in '" + n.token + "' with constant operands");
 }
 
 bool is_number(const NodePtr& n) { return n->kind == Node::Kind::number; }
@@ -506,7 +524,8 @@ void fold(NodePtr& n, const Source& src) {
     case Node::Kind::number:
     case Node::Kind::variable:
     case Node::Kind::local:
-    case Node::Kind::skip: return;
+    case Node::Kind::skip:
+      return;
     case Node::Kind::negate:
       fold(node.kids[0], src);
       if (is_number(node.kids[0])) make_number(node, -node.kids[0]->value);
@@ -579,10 +598,18 @@ class CodeGenerator {
  public:
   void generate(const Node& n, const Source& src) {
     switch (n.kind) {
-      case Node::Kind::number: emit(Op::push_const, constant_index(n.value, n, src), n, src, +1); return;
-      case Node::Kind::variable: emit(Op::load_var, n.slot, n, src, +1); return;
-      case Node::Kind::local: emit(Op::load_local, n.slot, n, src, +1); return;
-      case Node::Kind::skip: emit(Op::skip, 0, n, src, +1); return;  // stands for the branch value
+      case Node::Kind::number:
+        emit(Op::push_const, constant_index(n.value, n, src), n, src, +1);
+        return;
+      case Node::Kind::variable:
+        emit(Op::load_var, n.slot, n, src, +1);
+        return;
+      case Node::Kind::local:
+        emit(Op::load_local, n.slot, n, src, +1);
+        return;
+      case Node::Kind::skip:
+        emit(Op::skip, 0, n, src, +1);
+        return;  // stands for the branch value
       case Node::Kind::negate:
         generate(*n.kids[0], src);
         emit(Op::neg, 0, n, src, 0);
@@ -639,8 +666,8 @@ class CodeGenerator {
       src.fail(n.column, "expression too long (more than " + std::to_string(kMaxIndex) + " instructions)");
     depth_ += depth_change;
     if (depth_ > kMaxStack)
-      src.fail(n.column, std::string(src.kind) + " too deeply nested (needs more than " +
-                             std::to_string(kMaxStack) + " stack entries)");
+      src.fail(n.column, std::string(src.kind) + " too deeply nested (needs more than " + std::to_string(kMaxStack) +
+                             " stack entries)");
     if (depth_ > max_depth) max_depth = depth_;
     code.push_back(Instr{op, 0, static_cast<std::int16_t>(arg)});
     sources.push_back(InstrSource{n.column, src.in_locals, n.token});
@@ -699,15 +726,14 @@ std::vector<NodePtr> parse_locals(const Source& src, Scope& scope) {
     if (scope.vars.slot(s) >= 0) src.fail(name.column, "local '" + s + "' would shadow the variable '" + s + "'");
     if (scope.constants.count(s)) src.fail(name.column, "local '" + s + "' would shadow the constant '" + s + "'");
     if (scope.local_columns.count(s))
-      src.fail(name.column,
-               "local '" + s + "' is already defined at column " + std::to_string(scope.local_columns[s]));
+      src.fail(name.column, "local '" + s + "' is already defined at column " + std::to_string(scope.local_columns[s]));
     if (parser.peek().kind != Tok::assign)
       src.fail(parser.peek().column,
                "expected '=' after the local name '" + s + "' but found " + describe(parser.peek(), src));
     parser.take();
     if (parser.peek().kind == Tok::semicolon || parser.at_end())
-      src.fail(parser.peek().column, "expected the value of local '" + s + "' but found " +
-                                         describe(parser.peek(), src));
+      src.fail(parser.peek().column,
+               "expected the value of local '" + s + "' but found " + describe(parser.peek(), src));
     NodePtr value = parser.parse_or();
     if (parser.peek().kind != Tok::semicolon && !parser.at_end())
       src.fail(parser.peek().column, "expected ';' or the end of the locals after the definition of '" + s +

@@ -13,17 +13,17 @@ class ExpressionError : public std::runtime_error {
   // `source_kind` is "expression" or "locals"; `source` the text in question.
   static ExpressionError compile_error(const std::string& source_kind, const std::string& source, int column,
                                        const std::string& reason) {
-    return ExpressionError("in " + source_kind + " \"" + source + "\": column " + std::to_string(column) + ": " +
-                               reason,
-                           source, column, reason);
+    return ExpressionError(
+        "in " + source_kind + " \"" + source + "\": column " + std::to_string(column) + ": " + reason, source, column,
+        reason);
   }
 
   ExpressionError(const std::string& message, const std::string& source, int column, const std::string& reason)
       : std::runtime_error(message), source_(source), column_(column), reason_(reason) {}
 
   const std::string& source() const { return source_; }  // the text the column refers to
-  int column() const { return column_; }                  // 1-based; 0 when not tied to a column
-  const std::string& reason() const { return reason_; }   // the message without source and column
+  int column() const { return column_; }                 // 1-based; 0 when not tied to a column
+  const std::string& reason() const { return reason_; }  // the message without source and column
 
  private:
   std::string source_;

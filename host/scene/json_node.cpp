@@ -74,8 +74,7 @@ long JsonNode::integer(const std::string& key, long fallback, long lo, long hi) 
   long x = fallback;
   if (has(key)) {
     const Json& v = (*value_)[key];
-    if (!v.is_number_integer())
-      throw SceneError(key_path(key), json_type_name(v) + " " + json_text(v), "an integer");
+    if (!v.is_number_integer()) throw SceneError(key_path(key), json_type_name(v) + " " + json_text(v), "an integer");
     x = v.get<long>();
     if (x < lo || x > hi)
       throw SceneError(key_path(key), json_text(v),

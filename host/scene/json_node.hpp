@@ -6,12 +6,11 @@
 #pragma once
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace mfsd {
 
@@ -21,9 +20,7 @@ struct Range {
   double lo = -1e308, hi = 1e308;
   bool lo_open = false, hi_open = false;
   std::string text;  // e.g. "a number in (0, 1]"
-  bool contains(double x) const {
-    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
+  bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
   static Range positive() { return {0, 1e308, true, false, "a positive number"}; }
   static Range non_negative() { return {0, 1e308, false, false, "a number >= 0"}; }
   static Range any() { return {-1e308, 1e308, false, false, "a number"}; }
@@ -40,21 +37,20 @@ class JsonNode {
   bool has(const std::string& key) const;
   std::string key_path(const std::string& key) const { return path_ + "/" + key; }
 
-  double number(const std::string& key, const Range& range);                 // required
+  double number(const std::string& key, const Range& range);                   // required
   double number(const std::string& key, double fallback, const Range& range);  // optional
   long integer(const std::string& key, long fallback, long lo, long hi);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key);  // required, non-empty
   std::string string(const std::string& key, const std::string& fallback);
-  std::string choice(const std::string& key, const std::vector<std::string>& options,
-                     const std::string& fallback = "");
+  std::string choice(const std::string& key, const std::vector<std::string>& options, const std::string& fallback = "");
   // Fixed-length array of numbers (length `n`).
   std::vector<double> vector(const std::string& key, size_t n, const Range& range);
   std::vector<double> vector(const std::string& key, size_t n, const std::vector<double>& fallback, const Range& range);
   // A string or a number kept as an expression source (e.g. initial velocity).
   std::string expression(const std::string& key, const std::string& fallback);
 
-  JsonNode object(const std::string& key);           // required object
+  JsonNode object(const std::string& key);  // required object
   std::optional<JsonNode> optional_object(const std::string& key);
   // The object at key, or an empty one (all defaults) when absent.
   JsonNode object_or_empty(const std::string& key);

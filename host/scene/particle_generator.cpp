@@ -148,8 +148,7 @@ InitialParticles generate_particles(const Scene& scene) {
       }
       if (probe.radius == 0) members.push_back(best);
     }
-    if (!inside)
-      throw SceneError(path + "/point", point_text(probe.point, dim), "a point inside one of the bodies");
+    if (!inside) throw SceneError(path + "/point", point_text(probe.point, dim), "a point inside one of the bodies");
     if (members.empty())
       throw SceneError(path + "/radius", std::to_string(probe.radius),
                        "a radius that holds at least one particle around the point");

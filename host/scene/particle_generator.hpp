@@ -21,9 +21,9 @@ struct InitialParticles {
   struct Range {
     long begin, end;
   };
-  std::vector<Range> body_range;  // particles of body b are [begin, end)
+  std::vector<Range> body_range;                   // particles of body b are [begin, end)
   std::vector<std::vector<long>> probe_particles;  // ids of each probe's particles (averaged)
-  std::vector<long> constrained_count;  // per body
+  std::vector<long> constrained_count;             // per body
 
   size_t size() const { return position.size(); }
 };

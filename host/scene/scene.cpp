@@ -7,9 +7,12 @@ const char* to_string(MaterialModel m) {
 }
 const char* to_string(HourglassControl h) {
   switch (h) {
-    case HourglassControl::none: return "none";
-    case HourglassControl::laplacian: return "laplacian";
-    case HourglassControl::genog: return "genog";
+    case HourglassControl::none:
+      return "none";
+    case HourglassControl::laplacian:
+      return "laplacian";
+    case HourglassControl::genog:
+      return "genog";
   }
   return "?";
 }

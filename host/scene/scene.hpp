@@ -14,7 +14,7 @@ namespace mfsd {
 
 enum class MaterialModel { neo_hookean, saint_venant_kirchhoff };
 enum class HourglassControl { none, laplacian, genog };
-enum class SoundSpeed { bulk, p_wave };      // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
+enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
 enum class DampingForm { isotropic, split };  // one wave speed | c0 normal, c_s shear
 enum class Precision { single_precision, double_precision };
 

@@ -17,9 +17,8 @@ namespace {
 
 // Names a scene constant may not take: expression variables and the
 // per-body constants that body expressions receive.
-const std::set<std::string> kReservedNames = {"x0", "y0", "z0", "x",  "y",  "z",  "ux",   "uy", "uz",
-                                              "vx", "vy", "vz", "t",  "dt", "dx", "pi",   "c0", "cs",
-                                              "rho0", "h"};
+const std::set<std::string> kReservedNames = {"x0", "y0", "z0", "x",  "y",  "z",  "ux", "uy", "uz",   "vx",
+                                              "vy", "vz", "t",  "dt", "dx", "pi", "c0", "cs", "rho0", "h"};
 
 void line_column(const std::string& text, size_t byte, size_t& line, size_t& column) {
   line = 1;
@@ -94,18 +93,16 @@ SolverSpec read_solver(JsonNode s, int dim) {
   spec.end_time = s.number("end_time", Range::positive());
   spec.h_over_dp = s.number("h_over_dp", 1.15, Range{1.0, 2.0, false, false, "a number in [1, 2]"});
   spec.cfl = s.number("cfl", 0.6, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
-  spec.precision =
-      s.choice("precision", {"double", "float"}, "double") == "float" ? Precision::single_precision
-                                                                       : Precision::double_precision;
-  spec.sound_speed = s.choice("sound_speed", {"bulk", "p_wave"}, "bulk") == "bulk" ? SoundSpeed::bulk
-                                                                                   : SoundSpeed::p_wave;
+  spec.precision = s.choice("precision", {"double", "float"}, "double") == "float" ? Precision::single_precision
+                                                                                   : Precision::double_precision;
+  spec.sound_speed =
+      s.choice("sound_speed", {"bulk", "p_wave"}, "bulk") == "bulk" ? SoundSpeed::bulk : SoundSpeed::p_wave;
   // B0 in the force sums: the papers' eq. 20/32 for none and genog. For
   // laplacian the Laplacian shear sum has no B0, so B0 in the remaining-stress
   // sum leaves surface particles out of equilibrium at rest (docs/theory.md);
   // the default there is the authors' code (B0 only in dF/dt).
   spec.correction_in_force = s.boolean("kernel_correction_in_force", spec.hourglass != HourglassControl::laplacian);
-  spec.correction_floor =
-      s.number("correction_floor", 0.1, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+  spec.correction_floor = s.number("correction_floor", 0.1, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
   spec.reorder = s.boolean("reorder", true);
   spec.zeta = s.number("zeta", 1.07, Range::positive());
   {
@@ -119,7 +116,7 @@ SolverSpec read_solver(JsonNode s, int dim) {
     JsonNode d = s.object_or_empty("damping");
     spec.damping_factor = d.number("factor", 1.0, Range::non_negative());
     spec.damping_form = d.choice("form", {"isotropic", "split"}, "isotropic") == "isotropic" ? DampingForm::isotropic
-                                                                                          : DampingForm::split;
+                                                                                             : DampingForm::split;
     d.finish();
   }
   const auto g = s.vector("gravity", size_t(dim), std::vector<double>(size_t(dim), 0.0), Range::any());
@@ -188,7 +185,8 @@ void apply_override(Json& doc, const std::string& assignment) {
         node = &(*node)[p];
       }
     } else {
-      throw SceneError("--set " + path, json_type_name(*node) + " at " + walked, "an object or an array to descend into");
+      throw SceneError("--set " + path, json_type_name(*node) + " at " + walked,
+                       "an object or an array to descend into");
     }
   }
 }
@@ -210,7 +208,8 @@ Scene read_scene(const Json& doc, Json& resolved) {
   scene.name = root.string("name");
   for (char c : scene.name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-      throw SceneError("/name", "\"" + scene.name + "\"", "a name of letters, digits, '_', '-' and '.' (it names the output folder)");
+      throw SceneError("/name", "\"" + scene.name + "\"",
+                       "a name of letters, digits, '_', '-' and '.' (it names the output folder)");
   scene.description = root.string("description", "");
   if (!root.has("dimension")) throw SceneError("/dimension", "nothing", "2 or 3 (this key is required)");
   scene.dimension = int(root.integer("dimension", 2, 2, 3));
@@ -222,7 +221,9 @@ Scene read_scene(const Json& doc, Json& resolved) {
       const std::string name = it.key();
       const std::string path = "/constants/" + name;
       if (kReservedNames.count(name))
-        throw SceneError(path, "the reserved name '" + name + "'", "another name (reserved: variables x0 y0 z0 x y z ux uy uz vx vy vz t dt dx, pi, and the body constants c0 cs rho0 h)");
+        throw SceneError(path, "the reserved name '" + name + "'",
+                         "another name (reserved: variables x0 y0 z0 x y z ux uy uz vx vy vz t dt dx, pi, and the body "
+                         "constants c0 cs rho0 h)");
       if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
         throw SceneError(path, "the name '" + name + "'", "a name starting with a letter or '_'");
       const double v = c->number(name, Range::any());
@@ -297,8 +298,7 @@ Scene read_scene(const Json& doc, Json& resolved) {
   {
     JsonNode out = root.object_or_empty("output");
     scene.output.interval = out.number("interval", scene.solver.end_time / 100.0, Range::positive());
-    scene.output.probe_interval =
-        out.number("probe_interval", scene.output.interval / 20.0, Range::positive());
+    scene.output.probe_interval = out.number("probe_interval", scene.output.interval / 20.0, Range::positive());
     scene.output.vtu = out.boolean("vtu", true);
     out.finish();
   }
@@ -323,7 +323,8 @@ Scene read_scene(const Json& doc, Json& resolved) {
     scene.bounds.min[a] = lo[size_t(a)];
     scene.bounds.max[a] = hi[size_t(a)];
     if (!(hi[size_t(a)] > lo[size_t(a)]))
-      throw SceneError("/bounds/max/" + std::to_string(a), std::to_string(hi[size_t(a)]), "a value greater than /bounds/min");
+      throw SceneError("/bounds/max/" + std::to_string(a), std::to_string(hi[size_t(a)]),
+                       "a value greater than /bounds/min");
   }
   root.finish();
   return scene;

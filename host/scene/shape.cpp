@@ -12,8 +12,7 @@ bool Shape::contains(const Point3& p, int dim, double tol) const {
         if (p[a] < min[a] - tol || p[a] > max[a] + tol) return false;
       return true;
     case Kind::union_of:
-      return std::any_of(children.begin(), children.end(),
-                         [&](const Shape& c) { return c.contains(p, dim, tol); });
+      return std::any_of(children.begin(), children.end(), [&](const Shape& c) { return c.contains(p, dim, tol); });
     case Kind::difference:
       if (children.empty() || !children[0].contains(p, dim, tol)) return false;
       // A removed part shrinks by tol so that the widened test stays conservative.

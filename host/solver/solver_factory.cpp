@@ -35,8 +35,9 @@ std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& 
     if (d == 2) return single ? make_tlsph_cuda_2d_float(scene, p) : make_tlsph_cuda_2d_double(scene, p);
     return single ? make_tlsph_cuda_3d_float(scene, p) : make_tlsph_cuda_3d_double(scene, p);
 #else
-    throw UsageError("--backend cuda: this mfsd binary was built without CUDA (no nvcc at build time); "
-                     "use --backend cpu or rebuild on a machine with the CUDA toolkit");
+    throw UsageError(
+        "--backend cuda: this mfsd binary was built without CUDA (no nvcc at build time); "
+        "use --backend cpu or rebuild on a machine with the CUDA toolkit");
 #endif
   }
   throw UsageError("--backend " + o.backend + ": expected cpu or cuda");

@@ -176,8 +176,7 @@ MFSD_HD inline Mat<3, Real> inverse(const Mat<3, Real>& A) {
   R.m[2][0] = A.m[1][0] * A.m[2][1] - A.m[1][1] * A.m[2][0];
   R.m[2][1] = A.m[0][1] * A.m[2][0] - A.m[0][0] * A.m[2][1];
   R.m[2][2] = A.m[0][0] * A.m[1][1] - A.m[0][1] * A.m[1][0];
-  const Real inv_det =
-      Real(1) / (A.m[0][0] * R.m[0][0] + A.m[0][1] * R.m[1][0] + A.m[0][2] * R.m[2][0]);
+  const Real inv_det = Real(1) / (A.m[0][0] * R.m[0][0] + A.m[0][1] * R.m[1][0] + A.m[0][2] * R.m[2][0]);
   return R *= inv_det;
 }
 

@@ -7,7 +7,7 @@
 
 namespace mfsd::math {
 
-#define MFSD_UNARY(name, fname)                                      \
+#define MFSD_UNARY(name, fname)                                       \
   MFSD_HD MFSD_FORCEINLINE float name(float x) { return ::fname(x); } \
   MFSD_HD MFSD_FORCEINLINE double name(double x) { return ::name(x); }
 MFSD_UNARY(sqrt, sqrtf)
@@ -43,13 +43,21 @@ MFSD_HD MFSD_FORCEINLINE bool isfinite(double x) { return std::isfinite(x); }
 #endif
 
 template <class T>
-MFSD_HD MFSD_FORCEINLINE T min(T a, T b) { return b < a ? b : a; }
+MFSD_HD MFSD_FORCEINLINE T min(T a, T b) {
+  return b < a ? b : a;
+}
 template <class T>
-MFSD_HD MFSD_FORCEINLINE T max(T a, T b) { return a < b ? b : a; }
+MFSD_HD MFSD_FORCEINLINE T max(T a, T b) {
+  return a < b ? b : a;
+}
 template <class T>
-MFSD_HD MFSD_FORCEINLINE T clamp(T x, T lo, T hi) { return x < lo ? lo : (hi < x ? hi : x); }
+MFSD_HD MFSD_FORCEINLINE T clamp(T x, T lo, T hi) {
+  return x < lo ? lo : (hi < x ? hi : x);
+}
 template <class T>
-MFSD_HD MFSD_FORCEINLINE T sqr(T x) { return x * x; }
+MFSD_HD MFSD_FORCEINLINE T sqr(T x) {
+  return x * x;
+}
 
 template <class Real>
 inline constexpr Real pi = Real(3.14159265358979323846);

@@ -79,8 +79,8 @@ MFSD_HD inline Real norm(const Vec<D, Real>& a) {
 }
 template <class Real>
 MFSD_HD inline Vec<3, Real> cross(const Vec<3, Real>& a, const Vec<3, Real>& b) {
-  return Vec<3, Real>{{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2],
-                       a.v[0] * b.v[1] - a.v[1] * b.v[0]}};
+  return Vec<3, Real>{
+      {a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2], a.v[0] * b.v[1] - a.v[1] * b.v[0]}};
 }
 
 // Conversion between precisions (host set-up in double, kernels in Real).

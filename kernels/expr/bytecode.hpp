@@ -18,16 +18,16 @@ inline constexpr int kMaxStack = 32;
 inline constexpr int kMaxLocals = 16;
 
 enum class Op : std::uint8_t {
-  push_const,     // push consts[arg]
-  load_var,       // push vars[arg]; a non-finite variable is an error
-  load_local,     // push locals[arg]
-  store_local,    // locals[arg] = pop
-  neg,            // top = -top
-  add,            // b = pop, a = pop, push a op b (likewise for sub ... ne)
+  push_const,   // push consts[arg]
+  load_var,     // push vars[arg]; a non-finite variable is an error
+  load_local,   // push locals[arg]
+  store_local,  // locals[arg] = pop
+  neg,          // top = -top
+  add,          // b = pop, a = pop, push a op b (likewise for sub ... ne)
   sub,
   mul,
-  div,            // b == 0 is a division by zero
-  lt,             // comparisons push 1 or 0
+  div,  // b == 0 is a division by zero
+  lt,   // comparisons push 1 or 0
   gt,
   le,
   ge,

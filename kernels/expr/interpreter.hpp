@@ -27,19 +27,35 @@ template <class Real>
 MFSD_HD MFSD_FORCEINLINE Status apply_binary(Op op, Real a, Real b, Real* out) {
   const Real one(1), zero(0);
   switch (op) {
-    case Op::add: return detail::finite_result(a + b, out);
-    case Op::sub: return detail::finite_result(a - b, out);
-    case Op::mul: return detail::finite_result(a * b, out);
+    case Op::add:
+      return detail::finite_result(a + b, out);
+    case Op::sub:
+      return detail::finite_result(a - b, out);
+    case Op::mul:
+      return detail::finite_result(a * b, out);
     case Op::div:
       if (b == zero) return Status::division_by_zero;
       return detail::finite_result(a / b, out);
-    case Op::lt: *out = a < b ? one : zero; return Status::ok;
-    case Op::gt: *out = a > b ? one : zero; return Status::ok;
-    case Op::le: *out = a <= b ? one : zero; return Status::ok;
-    case Op::ge: *out = a >= b ? one : zero; return Status::ok;
-    case Op::eq: *out = a == b ? one : zero; return Status::ok;
-    case Op::ne: *out = a != b ? one : zero; return Status::ok;
-    default: return Status::bad_program;
+    case Op::lt:
+      *out = a < b ? one : zero;
+      return Status::ok;
+    case Op::gt:
+      *out = a > b ? one : zero;
+      return Status::ok;
+    case Op::le:
+      *out = a <= b ? one : zero;
+      return Status::ok;
+    case Op::ge:
+      *out = a >= b ? one : zero;
+      return Status::ok;
+    case Op::eq:
+      *out = a == b ? one : zero;
+      return Status::ok;
+    case Op::ne:
+      *out = a != b ? one : zero;
+      return Status::ok;
+    default:
+      return Status::bad_program;
   }
 }
 
@@ -48,27 +64,35 @@ template <class Real>
 MFSD_HD MFSD_FORCEINLINE Status apply_call1(Func f, Real x, Real* out) {
   const Real one(1), zero(0);
   switch (f) {
-    case Func::sin: return detail::finite_result(math::sin(x), out);
-    case Func::cos: return detail::finite_result(math::cos(x), out);
-    case Func::tan: return detail::finite_result(math::tan(x), out);
+    case Func::sin:
+      return detail::finite_result(math::sin(x), out);
+    case Func::cos:
+      return detail::finite_result(math::cos(x), out);
+    case Func::tan:
+      return detail::finite_result(math::tan(x), out);
     case Func::cot: {
       const Real s = math::sin(x);
       if (s == zero) return Status::division_by_zero;
       return detail::finite_result(math::cos(x) / s, out);
     }
-    case Func::sinh: return detail::finite_result(math::sinh(x), out);
-    case Func::cosh: return detail::finite_result(math::cosh(x), out);
-    case Func::tanh: return detail::finite_result(math::tanh(x), out);
+    case Func::sinh:
+      return detail::finite_result(math::sinh(x), out);
+    case Func::cosh:
+      return detail::finite_result(math::cosh(x), out);
+    case Func::tanh:
+      return detail::finite_result(math::tanh(x), out);
     case Func::coth: {
       const Real t = math::tanh(x);  // 1/tanh stays finite where cosh/sinh would overflow
       if (t == zero) return Status::division_by_zero;
       return detail::finite_result(one / t, out);
     }
-    case Func::exp: return detail::finite_result(math::exp(x), out);
+    case Func::exp:
+      return detail::finite_result(math::exp(x), out);
     case Func::sqrt:
       if (x < zero) return Status::domain_error;
       return detail::finite_result(math::sqrt(x), out);
-    case Func::abs: return detail::finite_result(math::fabs(x), out);
+    case Func::abs:
+      return detail::finite_result(math::fabs(x), out);
     case Func::log10:
       if (x <= zero) return Status::domain_error;
       return detail::finite_result(math::log10(x), out);
@@ -81,10 +105,14 @@ MFSD_HD MFSD_FORCEINLINE Status apply_call1(Func f, Real x, Real* out) {
     case Func::acos:
       if (x < -one || x > one) return Status::domain_error;
       return detail::finite_result(math::acos(x), out);
-    case Func::atan: return detail::finite_result(math::atan(x), out);
-    case Func::floor: return detail::finite_result(math::floor(x), out);
-    case Func::ceil: return detail::finite_result(math::ceil(x), out);
-    default: return Status::bad_program;
+    case Func::atan:
+      return detail::finite_result(math::atan(x), out);
+    case Func::floor:
+      return detail::finite_result(math::floor(x), out);
+    case Func::ceil:
+      return detail::finite_result(math::ceil(x), out);
+    default:
+      return Status::bad_program;
   }
 }
 
@@ -97,10 +125,16 @@ MFSD_HD MFSD_FORCEINLINE Status apply_call2(Func f, Real a, Real b, Real* out) {
       if (a < zero && b != math::floor(b)) return Status::domain_error;  // no real root
       if (a == zero && b < zero) return Status::division_by_zero;        // 0^-n = 1/0^n
       return detail::finite_result(math::pow(a, b), out);
-    case Func::min: *out = math::min(a, b); return Status::ok;
-    case Func::max: *out = math::max(a, b); return Status::ok;
-    case Func::atan2: return detail::finite_result(math::atan2(a, b), out);
-    default: return Status::bad_program;
+    case Func::min:
+      *out = math::min(a, b);
+      return Status::ok;
+    case Func::max:
+      *out = math::max(a, b);
+      return Status::ok;
+    case Func::atan2:
+      return detail::finite_result(math::atan2(a, b), out);
+    default:
+      return Status::bad_program;
   }
 }
 
@@ -146,29 +180,35 @@ MFSD_HD Status evaluate(const ProgramView<Real>& p, const Real* vars, Real* resu
   while (pc < n) {
     const Instr in = code[pc];
     switch (in.op) {
-      case Op::push_const: MFSD_EXPR_PUSH(p.consts[in.arg]); break;
+      case Op::push_const:
+        MFSD_EXPR_PUSH(p.consts[in.arg]);
+        break;
       case Op::load_var: {
         const Real v = vars[in.arg];
         if (!math::isfinite(v)) MFSD_EXPR_FAIL(Status::non_finite);
         MFSD_EXPR_PUSH(v);
         break;
       }
-      case Op::load_local: MFSD_EXPR_PUSH(locals[in.arg]); break;
+      case Op::load_local:
+        MFSD_EXPR_PUSH(locals[in.arg]);
+        break;
       case Op::store_local:
         locals[in.arg] = top;
         top = stack[--sp];
         break;
-      case Op::neg: top = -top; break;
-      MFSD_EXPR_BINARY(add)
-      MFSD_EXPR_BINARY(sub)
-      MFSD_EXPR_BINARY(mul)
-      MFSD_EXPR_BINARY(div)
-      MFSD_EXPR_BINARY(lt)
-      MFSD_EXPR_BINARY(gt)
-      MFSD_EXPR_BINARY(le)
-      MFSD_EXPR_BINARY(ge)
-      MFSD_EXPR_BINARY(eq)
-      MFSD_EXPR_BINARY(ne)
+      case Op::neg:
+        top = -top;
+        break;
+        MFSD_EXPR_BINARY(add)
+        MFSD_EXPR_BINARY(sub)
+        MFSD_EXPR_BINARY(mul)
+        MFSD_EXPR_BINARY(div)
+        MFSD_EXPR_BINARY(lt)
+        MFSD_EXPR_BINARY(gt)
+        MFSD_EXPR_BINARY(le)
+        MFSD_EXPR_BINARY(ge)
+        MFSD_EXPR_BINARY(eq)
+        MFSD_EXPR_BINARY(ne)
       case Op::call1:
         st = apply_call1(static_cast<Func>(in.arg), top, &top);
         if (st != Status::ok) MFSD_EXPR_FAIL(st);
@@ -180,7 +220,9 @@ MFSD_HD Status evaluate(const ProgramView<Real>& p, const Real* vars, Real* resu
         if (st != Status::ok) MFSD_EXPR_FAIL(st);
         break;
       }
-      case Op::to_bool: top = top != Real(0) ? Real(1) : Real(0); break;
+      case Op::to_bool:
+        top = top != Real(0) ? Real(1) : Real(0);
+        break;
       case Op::and_jump:
         if (top == Real(0)) {
           top = Real(0);
@@ -197,7 +239,9 @@ MFSD_HD Status evaluate(const ProgramView<Real>& p, const Real* vars, Real* resu
         }
         top = stack[--sp];
         break;
-      case Op::jump: pc = in.arg; continue;
+      case Op::jump:
+        pc = in.arg;
+        continue;
       case Op::jump_if_false: {
         const bool taken = top == Real(0);
         top = stack[--sp];
@@ -207,8 +251,10 @@ MFSD_HD Status evaluate(const ProgramView<Real>& p, const Real* vars, Real* resu
         }
         break;
       }
-      case Op::skip: return Status::skipped;
-      default: MFSD_EXPR_FAIL(Status::bad_program);
+      case Op::skip:
+        return Status::skipped;
+      default:
+        MFSD_EXPR_FAIL(Status::bad_program);
     }
     ++pc;
   }

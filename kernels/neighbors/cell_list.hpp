@@ -104,7 +104,9 @@ struct CellNeighborhood {
 struct CountVisitor {
   Index count = 0;
   template <class V>
-  MFSD_HD void operator()(Index, const V&, double) { ++count; }
+  MFSD_HD void operator()(Index, const V&, double) {
+    ++count;
+  }
 };
 
 template <int D>

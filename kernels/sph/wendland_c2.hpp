@@ -10,7 +10,7 @@ namespace mfsd {
 
 template <int D, class Real>
 struct WendlandC2 {
-  Real h;       // smoothing length
+  Real h;  // smoothing length
   Real inv_h;
   Real factor;  // a_d
 
@@ -21,8 +21,7 @@ struct WendlandC2 {
     const Real pi = math::pi<Real>;
     if (D == 1) k.factor = Real(3) / (Real(4) * smoothing_length);
     if (D == 2) k.factor = Real(7) / (Real(4) * pi * smoothing_length * smoothing_length);
-    if (D == 3)
-      k.factor = Real(21) / (Real(16) * pi * smoothing_length * smoothing_length * smoothing_length);
+    if (D == 3) k.factor = Real(21) / (Real(16) * pi * smoothing_length * smoothing_length * smoothing_length);
     return k;
   }
 

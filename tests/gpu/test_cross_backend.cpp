@@ -19,13 +19,12 @@ bool gpu_required() {
   return v && std::string(v) == "1";
 }
 
-#define MFSD_REQUIRE_CUDA_DEVICE()                                                              \
-  do {                                                                                          \
-    if (!cuda_compiled() || cuda_device_count() == 0) {                                         \
-      if (gpu_required()) FAIL() << "MFSD_REQUIRE_GPU=1 but no usable CUDA device: "            \
-                                 << cuda_device_name();                                         \
-      GTEST_SKIP() << "no CUDA device (" << cuda_device_name() << ")";                          \
-    }                                                                                           \
+#define MFSD_REQUIRE_CUDA_DEVICE()                                                                          \
+  do {                                                                                                      \
+    if (!cuda_compiled() || cuda_device_count() == 0) {                                                     \
+      if (gpu_required()) FAIL() << "MFSD_REQUIRE_GPU=1 but no usable CUDA device: " << cuda_device_name(); \
+      GTEST_SKIP() << "no CUDA device (" << cuda_device_name() << ")";                                      \
+    }                                                                                                       \
   } while (0)
 
 std::vector<ProbeSample> run(const std::string& config, const std::vector<std::string>& sets,

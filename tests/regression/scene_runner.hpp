@@ -26,8 +26,8 @@ inline SceneDocument load_config(const std::string& name, const std::vector<std:
 
 // Runs to the scene's end time (or max_steps); samples probes every step.
 inline Trace run_config(const std::string& name, const std::vector<std::string>& overrides,
-                        Precision precision = Precision::double_precision, long max_steps = 0,
-                        long energy_every = 0, int threads = 0) {
+                        Precision precision = Precision::double_precision, long max_steps = 0, long energy_every = 0,
+                        int threads = 0) {
   const SceneDocument doc = load_config(name, overrides);
   const InitialParticles particles = generate_particles(doc.scene);
   SolverOptions o;

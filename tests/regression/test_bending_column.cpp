@@ -48,9 +48,10 @@ TEST(BendingColumn, FirstMinimumOfTopCentreHeight) {
 
 TEST(BendingColumn, HardCaseStaysOrderlyOnlyWithHourglassControl) {
   auto peak = [](const char* hg) {
-    auto t = test::run_config("bending_column_3d.json", {"constants.H_over_dp=6", "constants.v0=20",
-                                                          "solver.end_time=1.0", std::string("solver.hourglass=") + hg},
-                              Precision::double_precision, 0, 20);
+    auto t = test::run_config(
+        "bending_column_3d.json",
+        {"constants.H_over_dp=6", "constants.v0=20", "solver.end_time=1.0", std::string("solver.hourglass=") + hg},
+        Precision::double_precision, 0, 20);
     double p = 0;
     for (const auto& e : t.energies) p = std::max(p, e.hourglass_mean);
     return p;

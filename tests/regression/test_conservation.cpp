@@ -44,10 +44,10 @@ INSTANTIATE_TEST_SUITE_P(Variants, AtRest,
 // surface while the Laplacian shear sum (eq. 27) has no B0. This is why the
 // default for `laplacian` leaves B0 out of the force sums (docs/theory.md).
 TEST(AtRest, LaplacianWithCorrectionInForceSumsDeformsABodyAtRest) {
-  auto t = run_config("scenes/free_block_2d.json",
-                      {"solver.hourglass=laplacian", "solver.kernel_correction_in_force=true",
-                       "bodies.block.initial_velocity={}"},
-                      Precision::double_precision, 200, 200);
+  auto t = run_config(
+      "scenes/free_block_2d.json",
+      {"solver.hourglass=laplacian", "solver.kernel_correction_in_force=true", "bodies.block.initial_velocity={}"},
+      Precision::double_precision, 200, 200);
   EXPECT_GT(t.energies.back().strain, 1.0);  // J, from nothing
 }
 

@@ -15,7 +15,8 @@ using test::run_config;
 TEST(Gravity, FreeFallIsExactAndStressFree) {
   // A body with uniform initial velocity in uniform gravity moves rigidly:
   // u = v0 t + g t^2 / 2 at every particle, F stays I.
-  auto t = run_config("scenes/free_block_2d.json", {"solver.gravity=[0,-9.81]", "bodies.block.initial_velocity={\"x\": 0.3}"},
+  auto t = run_config("scenes/free_block_2d.json",
+                      {"solver.gravity=[0,-9.81]", "bodies.block.initial_velocity={\"x\": 0.3}"},
                       Precision::double_precision, 0, 50);
   const double T = t.time.back();
   const ProbeSample& p = t.probes.back().front();

@@ -28,11 +28,11 @@ namespace {
 // Peak over the run of the mean hourglass indicator (+inf when the run fails).
 double peak_hourglass(const std::string& hourglass, int omega, double nu) {
   try {
-    auto t = test::run_config("twisting_column_3d.json",
-                              {"constants.H_over_dp=4", "constants.Omega0=" + std::to_string(omega),
-                               "bodies.column.material.poisson_ratio=" + std::to_string(nu),
-                               "solver.hourglass=" + hourglass},
-                              Precision::double_precision, 0, 20);
+    auto t = test::run_config(
+        "twisting_column_3d.json",
+        {"constants.H_over_dp=4", "constants.Omega0=" + std::to_string(omega),
+         "bodies.column.material.poisson_ratio=" + std::to_string(nu), "solver.hourglass=" + hourglass},
+        Precision::double_precision, 0, 20);
     double peak = 0;
     for (const auto& e : t.energies) peak = std::max(peak, e.hourglass_mean);
     EXPECT_NEAR(t.time.back(), 0.5, 1e-12) << hourglass;

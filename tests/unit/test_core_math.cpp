@@ -59,7 +59,8 @@ TYPED_TEST(CoreMath, DeterminantIsMultiplicativeAndMatchesCofactors) {
   using Real = typename TypeParam::Real;
   std::mt19937 rng(2);
   const Mat<D, Real> A = random_matrix<D, Real>(rng), B = random_matrix<D, Real>(rng);
-  EXPECT_NEAR(double(det(A * B)), double(det(A)) * double(det(B)), 50 * Tol<Real>::value * std::abs(double(det(A * B))));
+  EXPECT_NEAR(double(det(A * B)), double(det(A)) * double(det(B)),
+              50 * Tol<Real>::value * std::abs(double(det(A * B))));
   // Known value: diag(2, 3[, 4]) with one off-diagonal entry (upper triangular).
   Mat<D, Real> T = Mat<D, Real>::zero();
   for (int a = 0; a < D; ++a) T.m[a][a] = Real(a + 2);

@@ -21,7 +21,8 @@ struct Corrected {
 
   Corrected(const std::vector<Vec<D, double>>& x, double dp, double floor = 0.1)
       : f(x, dp, 1.15 * dp, true), B(x.size()), flag(x.size()) {
-    parallel_for<Cpu>(Index(x.size()), CorrectionMatrixFunctor<D, Real>{f.pairs.view(), raw(B), raw(flag), Real(floor)});
+    parallel_for<Cpu>(Index(x.size()),
+                      CorrectionMatrixFunctor<D, Real>{f.pairs.view(), raw(B), raw(flag), Real(floor)});
     for (unsigned char c : to_host<Cpu>(flag)) regularized += c;
   }
 };

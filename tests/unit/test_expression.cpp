@@ -176,7 +176,9 @@ TEST(Expression, TwoArgumentFunctionsMatchTheCLibrary) {
     std::vector<std::pair<double, double>> args;
   };
   const std::vector<Case> cases = {
-      {"pow", [](double a, double b) { return std::pow(a, b); }, {{2, 10}, {-2, 3}, {-2, -2}, {0, 0}, {2.5, 0.5}, {0, 2}}},
+      {"pow",
+       [](double a, double b) { return std::pow(a, b); },
+       {{2, 10}, {-2, 3}, {-2, -2}, {0, 0}, {2.5, 0.5}, {0, 2}}},
       {"min", [](double a, double b) { return std::fmin(a, b); }, {{1, 2}, {2, 1}, {-1, -1}}},
       {"max", [](double a, double b) { return std::fmax(a, b); }, {{1, 2}, {2, 1}, {-1, -1}}},
       {"atan2", [](double a, double b) { return std::atan2(a, b); }, {{1, 1}, {1, -1}, {-1, -1}, {0, -1}, {0, 0}}},

@@ -142,7 +142,7 @@ TEST(KelvinVoigtDamping, IsotropicAndSplitForms) {
   EXPECT_DOUBLE_EQ(a.m[0][0], 10.0);
   EXPECT_DOUBLE_EQ(a.m[0][1], 10.0);  // 10 * (2 + 0)/2
   EXPECT_DOUBLE_EQ(a.m[1][0], 10.0);
-  EXPECT_DOUBLE_EQ(b.m[1][2], 4.0);   // 2 * (4 + 0)/2
+  EXPECT_DOUBLE_EQ(b.m[1][2], 4.0);  // 2 * (4 + 0)/2
   EXPECT_DOUBLE_EQ(b.m[2][2], 50.0);
   // A rigid spin (skew dF at F = I) is not damped.
   const Mat<3, double> W{{{0, 1, 0}, {-1, 0, 0}, {0, 0, 0}}};

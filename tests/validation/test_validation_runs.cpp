@@ -20,8 +20,7 @@ TEST(ValidatePlate, PeriodAtHalfTheSeedResolution) {
   for (const Case c : {Case{"genog", 0.28539, 0.28185, 0.28201}, Case{"laplacian", 0.28610, 0.28208, 0.28166}}) {
     auto t = test::run_config("oscillating_plate_2d.json",
                               {std::string("solver.hourglass=") + c.hourglass, "constants.H_over_dp=20",
-                               "constants.vf=0.05", "bodies.plate.material.poisson_ratio=0.3",
-                               "solver.end_time=0.62"},
+                               "constants.vf=0.05", "bodies.plate.material.poisson_ratio=0.3", "solver.end_time=0.62"},
                               Precision::double_precision);
     std::vector<double> y;
     for (const auto& p : t.probes) y.push_back(p[0].position[1]);
