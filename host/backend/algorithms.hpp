@@ -74,4 +74,19 @@ inline void from_host(const std::vector<T>& h, DeviceVector<B, T>& v) {
   thrust::copy(h.begin(), h.end(), v.begin());
 }
 
+template <class T>
+struct CopyOneFunctor {
+  const T* from;
+  T* to;
+  MFSD_HD void operator()(Index) const { *to = *from; }
+};
+
+// One element of a device array (error reports; not for hot paths).
+template <class B, class T>
+inline T copy_element(const T* array, Index i) {
+  DeviceVector<B, T> one(1);
+  parallel_for<B>(1, CopyOneFunctor<T>{array + i, raw(one)});
+  return to_host<B>(one)[0];
+}
+
 }  // namespace mfsd

@@ -37,6 +37,29 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
       << ", nu " << body.material.poisson_ratio << ", dp " << body.spacing << ", h " << p.h << ", c0 " << p.c0
       << " m/s, max initial speed " << vmax << " m/s\n";
   }
+  for (size_t c = 0; c < s.clamps.size(); ++c)
+    o << "  clamp '" << s.clamps[c].name << "' on body '" << s.clamps[c].body << "': " << P.clamp_particles[c].size()
+      << " particles\n";
+  const char* type_name[] = {"velocity condition", "point load", "traction load", "acceleration load"};
+  const char* axes[3] = {"x", "y", "z"};
+  for (size_t c = 0; c < s.conditions.size(); ++c) {
+    const ConditionSpec& cond = s.conditions[c];
+    const auto& sel = P.condition_particles[c];
+    o << "  " << type_name[int(cond.type)] << " '" << cond.name << "' on body '" << cond.body << "': " << sel.ids.size()
+      << " particles";
+    if (!sel.area.empty()) {
+      double area = 0;
+      for (double a : sel.area) area += a;
+      o << " (surface area " << area << (s.dimension == 2 ? " m^2 per m depth" : " m^2") << ")";
+    }
+    o << ", components";
+    for (int a = 0; a < s.dimension; ++a)
+      if (!cond.value[size_t(a)].empty()) o << " " << axes[a];
+    if (cond.t_start > 0 || cond.t_end < 1e300) o << ", active for t in [" << cond.t_start << ", " << cond.t_end << "]";
+    o << "\n";
+  }
+  for (size_t k = 0; k < s.measure_planes.size(); ++k)
+    o << "  measure plane '" << s.measure_planes[k].name << "': " << P.measure_particles[k].size() << " particles\n";
   for (size_t k = 0; k < s.probes.size(); ++k) {
     const auto& members = P.probe_particles[k];
     Point3 x{0, 0, 0};

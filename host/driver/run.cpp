@@ -11,6 +11,7 @@
 #include <fstream>
 #include <memory>
 
+#include "host/driver/output_rows.hpp"
 #include "host/driver/progress.hpp"
 #include "host/driver/run_report.hpp"
 #include "host/output/csv_writer.hpp"
@@ -29,41 +30,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::vector<std::string> probe_columns(const Scene& scene) {
-  std::vector<std::string> cols{"time"};
-  const char* axes[3] = {"x", "y", "z"};
-  for (auto& p : scene.probes)
-    for (auto& f : p.fields) {
-      if (f == "von_mises" || f == "J") {
-        cols.push_back(p.name + "." + f);
-      } else {
-        for (int a = 0; a < scene.dimension; ++a) cols.push_back(p.name + "." + f + "." + axes[a]);
-      }
-    }
-  return cols;
-}
-
-std::vector<double> probe_row(const Scene& scene, double time, const std::vector<ProbeSample>& s) {
-  std::vector<double> row{time};
-  for (size_t k = 0; k < scene.probes.size(); ++k)
-    for (auto& f : scene.probes[k].fields) {
-      if (f == "von_mises") {
-        row.push_back(s[k].von_mises);
-      } else if (f == "J") {
-        row.push_back(s[k].jacobian);
-      } else {
-        const Point3& v = f == "position" ? s[k].position : (f == "displacement" ? s[k].displacement : s[k].velocity);
-        for (int a = 0; a < scene.dimension; ++a) row.push_back(v[a]);
-      }
-    }
-  return row;
-}
-
 // Outputs of a previous run in the same folder would mix with this one's.
 void remove_previous_outputs(const std::string& dir) {
-  for (const char* f : {"run.json", "timing.json", "probes.csv", "energies.csv", "snapshots.pvd"})
+  for (const char* f :
+       {"run.json", "timing.json", "probes.csv", "energies.csv", "boundary_forces.csv", "snapshots.pvd"})
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
+  for (auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("measure_", 0) == 0 && e.path().extension() == ".csv") fs::remove(e.path());
 }
 
 }  // namespace
@@ -109,8 +83,13 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   }
 
   CsvWriter probes_csv(dir + "/probes.csv", probe_columns(scene));
-  CsvWriter energies_csv(dir + "/energies.csv",
-                         {"time", "kinetic", "strain", "total", "hourglass_max", "hourglass_mean"});
+  CsvWriter energies_csv(dir + "/energies.csv", energy_columns(scene));
+  std::vector<std::unique_ptr<CsvWriter>> measure_csv;
+  for (auto& mp : scene.measure_planes)
+    measure_csv.push_back(std::make_unique<CsvWriter>(dir + "/measure_" + mp.name + ".csv", measure_columns(scene)));
+  std::unique_ptr<CsvWriter> forces_csv;
+  if (!scene.clamps.empty() || !scene.conditions.empty())
+    forces_csv = std::make_unique<CsvWriter>(dir + "/boundary_forces.csv", boundary_force_columns(scene));
   PvdIndex pvd(dir + "/snapshots.pvd");
   const bool single = options.solver.precision == Precision::single_precision;
   int snapshot_count = 0;
@@ -119,9 +98,15 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   auto write_outputs = [&](bool snapshot) {
     const auto t0 = Clock::now();
     if (!scene.probes.empty()) probes_csv.row(probe_row(scene, solver->time(), solver->probes()));
+    if (forces_csv) forces_csv->row(boundary_force_row(scene, solver->time(), solver->boundary_forces()));
+    if (!measure_csv.empty()) {
+      const auto m = solver->measures();
+      for (size_t k = 0; k < m.size(); ++k)
+        measure_csv[k]->row(measure_row(scene, solver->time(), particles.measure_particles[k].size(), m[k]));
+    }
     if (snapshot) {
       const EnergySample e = solver->energies();
-      energies_csv.row({solver->time(), e.kinetic, e.strain, e.kinetic + e.strain, e.hourglass_max, e.hourglass_mean});
+      energies_csv.row(energy_row(solver->time(), e));
       if (scene.output.vtu) {
         char name[64];
         std::snprintf(name, sizeof name, "snapshots/%s_%05d.vtu", scene.name.c_str(), snapshot_count);

@@ -1,5 +1,6 @@
 #include "host/scene/particle_generator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -8,7 +9,9 @@
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
 #include "host/scene/body_properties.hpp"
+#include "host/scene/particle_expressions.hpp"
 #include "host/scene/scene_error.hpp"
+#include "host/scene/surface.hpp"
 #include "kernels/expr/interpreter.hpp"
 
 namespace mfsd {
@@ -37,6 +40,141 @@ void fill_body(const BodySpec& body, int dim, std::vector<Point3>& out) {
                  dim == 3 ? bb.min[2] + (double(k) + 0.5) * dp : 0.0};
         if (body.geometry.contains(p, dim, tol)) out.push_back(p);
       }
+}
+
+// Evaluates the components of a body's initial field (velocity or
+// displacement) at every particle of the body; 'skip' leaves the value.
+void evaluate_initial_field(const Scene& scene, size_t b, const std::array<std::string, 3>& texts,
+                            const std::string& path, long begin, long end, const std::vector<Point3>& position,
+                            std::vector<Point3>& out) {
+  const int dim = scene.dimension;
+  std::map<std::string, double> constants;
+  for (auto& kv : body_expression_constants(scene, b)) constants[kv.first] = kv.second;
+  const expr::VariableTable vars{{"x0", "y0", "z0"}};
+  const char* axis_name[3] = {"x", "y", "z"};
+  for (int a = 0; a < dim; ++a) {
+    const std::string epath = path + "/" + axis_name[a];
+    expr::Program prog;
+    try {
+      prog = expr::compile(texts[size_t(a)], vars, constants);
+    } catch (const expr::ExpressionError& e) {
+      throw SceneError(epath + ": " + e.what());
+    }
+    const auto view = prog.host_view<double>();
+    for (long i = begin; i < end; ++i) {
+      const Point3& x = position[size_t(i)];
+      double value = 0;
+      int pc = 0;
+      const expr::Status st = expr::evaluate(view, x.data(), &value, &pc);
+      if (st == expr::Status::skipped) continue;
+      if (st != expr::Status::ok)
+        throw SceneError(epath + ": " + prog.describe_error(st, pc) + " at x0 = " + point_text(x, dim));
+      out[size_t(i)][a] = value;
+    }
+  }
+}
+
+// The particles of body b that a selection holds.
+std::vector<long> select_particles(const Scene& scene, size_t b, const SelectionSpec& sel, const std::string& path,
+                                   const InitialParticles& P) {
+  const int dim = scene.dimension;
+  const auto r = P.body_range[b];
+  std::vector<long> ids;
+  if (sel.kind == SelectionSpec::Kind::body) {
+    for (long i = r.begin; i < r.end; ++i) ids.push_back(i);
+  } else if (sel.kind == SelectionSpec::Kind::region) {
+    const double tol = 1e-9 * scene.bodies[b].spacing;
+    for (long i = r.begin; i < r.end; ++i)
+      if (sel.region.contains(P.position[size_t(i)], dim, tol)) ids.push_back(i);
+  } else {
+    std::map<std::string, double> constants;
+    for (auto& kv : body_expression_constants(scene, b)) constants[kv.first] = kv.second;
+    expr::Program prog;
+    try {
+      prog = expr::compile(sel.expression, expr::VariableTable{{"x0", "y0", "z0"}}, constants);
+    } catch (const expr::ExpressionError& e) {
+      throw SceneError(path + "/where: " + e.what());
+    }
+    const auto view = prog.host_view<double>();
+    for (long i = r.begin; i < r.end; ++i) {
+      const Point3& x = P.position[size_t(i)];
+      double value = 0;
+      int pc = 0;
+      const expr::Status st = expr::evaluate(view, x.data(), &value, &pc);
+      if (st == expr::Status::skipped) continue;  // 'skip': not selected
+      if (st != expr::Status::ok)
+        throw SceneError(path + "/where: " + prog.describe_error(st, pc) + " at x0 = " + point_text(x, dim));
+      if (value != 0) ids.push_back(i);
+    }
+  }
+  return ids;
+}
+
+Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// The particles within thickness / 2 of a measure plane's segment (2-D) or
+// convex planar quadrilateral (3-D), in the reference configuration.
+std::vector<long> measure_plane_particles(const Scene& scene, const MeasurePlaneSpec& m, const std::string& path,
+                                          const InitialParticles& P) {
+  const int dim = scene.dimension;
+  double thickness = m.thickness;
+  if (thickness == 0) {  // default: the body's spacing (the smallest one without a body)
+    thickness = 1e300;
+    for (auto& b : scene.bodies)
+      if (m.body.empty() || b.name == m.body) thickness = std::min(thickness, b.spacing);
+  }
+  const std::vector<Point3>& c = m.points;
+  Point3 n{0, 0, 0};
+  double size = 0;
+  for (auto& p : c) size = std::max(size, std::sqrt(dot(sub(p, c[0]), sub(p, c[0]))));
+  if (size == 0) throw SceneError(path + "/points", "coincident points", "a segment or quadrilateral of non-zero size");
+  if (dim == 2) {
+    const Point3 d = sub(c[1], c[0]);
+    n = {-d[1] / size, d[0] / size, 0};
+  } else {
+    n = cross(sub(c[2], c[0]), sub(c[3], c[1]));
+    const double nn = std::sqrt(dot(n, n));
+    if (nn < 1e-12 * size * size)
+      throw SceneError(path + "/points", "a degenerate or self-crossing quadrilateral",
+                       "4 corners in order around a convex quadrilateral of non-zero area");
+    for (auto& x : n) x /= nn;
+    for (auto& p : c)
+      if (std::abs(dot(sub(p, c[0]), n)) > 1e-6 * size)
+        throw SceneError(path + "/points", "corners that are not in one plane", "4 coplanar corners");
+    for (size_t k = 0; k < 4; ++k) {  // convex, corners in order
+      const Point3 e0 = sub(c[(k + 1) % 4], c[k]), e1 = sub(c[(k + 2) % 4], c[(k + 1) % 4]);
+      if (dot(cross(e0, e1), n) <= 0)
+        throw SceneError(path + "/points", "a non-convex or self-crossing quadrilateral",
+                         "4 corners in order around a convex quadrilateral");
+    }
+  }
+  const double tol = 1e-9 * size;
+  std::vector<long> ids;
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (!m.body.empty() && scene.bodies[b].name != m.body) continue;
+    for (long i = P.body_range[b].begin; i < P.body_range[b].end; ++i) {
+      const Point3 x = sub(P.position[size_t(i)], c[0]);
+      if (std::abs(dot(x, n)) > 0.5 * thickness + tol) continue;
+      bool inside = true;
+      if (dim == 2) {
+        const Point3 d = sub(c[1], c[0]);
+        const double s = dot(x, d) / dot(d, d);
+        inside = s >= -tol / size && s <= 1 + tol / size;
+      } else {
+        for (size_t k = 0; k < 4 && inside; ++k)
+          inside = dot(cross(sub(c[(k + 1) % 4], c[k]), sub(P.position[size_t(i)], c[k])), n) >= -tol * size;
+      }
+      if (inside) ids.push_back(i);
+    }
+  }
+  if (ids.empty())
+    throw SceneError(path, "a plane that holds no particle",
+                     "points and a thickness (" + std::to_string(thickness) + " m) that hold at least one particle");
+  return ids;
 }
 
 }  // namespace
@@ -78,31 +216,20 @@ InitialParticles generate_particles(const Scene& scene) {
     P.volume.resize(size_t(end), props.volume);
 
     // Initial velocity: one expression per component of x0, y0, z0 and constants.
-    std::map<std::string, double> constants;
-    for (auto& kv : body_expression_constants(scene, b)) constants[kv.first] = kv.second;
-    const expr::VariableTable vars{{"x0", "y0", "z0"}};
     P.velocity.resize(size_t(end), Point3{0, 0, 0});
-    const char* axis_name[3] = {"x", "y", "z"};
-    for (int a = 0; a < dim; ++a) {
-      const std::string epath = path + "/initial_velocity/" + axis_name[a];
-      expr::Program prog;
-      try {
-        prog = expr::compile(body.initial_velocity[a], vars, constants);
-      } catch (const expr::ExpressionError& e) {
-        throw SceneError(epath + ": " + e.what());
-      }
-      const auto view = prog.host_view<double>();
-      for (long i = begin; i < end; ++i) {
-        const Point3& x = P.position[size_t(i)];
-        double value = 0;
-        int pc = 0;
-        const expr::Status st = expr::evaluate(view, x.data(), &value, &pc);
-        if (st == expr::Status::skipped) continue;  // 'skip': leave the value (0)
-        if (st != expr::Status::ok)
-          throw SceneError(epath + ": " + prog.describe_error(st, pc) + " at x0 = " + point_text(x, dim));
-        P.velocity[size_t(i)][a] = value;
-      }
-    }
+    evaluate_initial_field(scene, b, body.initial_velocity, path + "/initial_velocity", begin, end, P.position,
+                           P.velocity);
+  }
+  P.surface.assign(P.position.size(), 0);
+  for (size_t b = 0; b < scene.bodies.size(); ++b)
+    mark_surface(P.position, P.body_range[b].begin, P.body_range[b].end, scene.bodies[b].spacing, dim, P.surface);
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    if (body.initial_displacement[0].empty()) continue;
+    P.displacement.resize(P.position.size(), Point3{0, 0, 0});
+    evaluate_initial_field(scene, b, body.initial_displacement,
+                           "/bodies/" + std::to_string(b) + "/initial_displacement", P.body_range[b].begin,
+                           P.body_range[b].end, P.position, P.displacement);
   }
   P.constrained.assign(P.position.size(), 0);
   P.constrained_count.assign(scene.bodies.size(), 0);
@@ -115,9 +242,13 @@ InitialParticles generate_particles(const Scene& scene) {
     const auto r = P.body_range[it->second];
     long selected = 0;
     const double tol = 1e-9 * scene.bodies[it->second].spacing;
+    P.clamp_particles.emplace_back();
     for (long i = r.begin; i < r.end; ++i)
       if (clamp.region.contains(P.position[size_t(i)], dim, tol)) {
-        if (!P.constrained[size_t(i)]) ++P.constrained_count[it->second];
+        if (!P.constrained[size_t(i)]) {
+          ++P.constrained_count[it->second];
+          P.clamp_particles.back().push_back(i);
+        }
         P.constrained[size_t(i)] = 1;
         ++selected;
       }
@@ -126,7 +257,45 @@ InitialParticles generate_particles(const Scene& scene) {
                        "a region that holds at least one particle of body '" + clamp.body + "'");
   }
   for (size_t i = 0; i < P.position.size(); ++i)
-    if (P.constrained[i]) P.velocity[i] = Point3{0, 0, 0};
+    if (P.constrained[i]) {
+      P.velocity[i] = Point3{0, 0, 0};
+      if (!P.displacement.empty()) P.displacement[i] = Point3{0, 0, 0};
+    }
+
+  // Velocity conditions and loads: the selected particles, checked
+  // expressions, and the surface area of traction particles.
+  size_t n_velocity = 0;
+  for (size_t c = 0; c < scene.conditions.size(); ++c) {
+    const ConditionSpec& cond = scene.conditions[c];
+    const bool velocity = cond.type == ConditionSpec::Type::velocity;
+    const size_t k = velocity ? n_velocity++ : c - n_velocity;
+    const std::string path = (velocity ? "/velocity_conditions/" : "/loads/") + std::to_string(k);
+    const size_t b = body_index.at(cond.body);
+    std::vector<long> ids = select_particles(scene, b, cond.select, path, P);
+    InitialParticles::Selected sel;
+    const double dp = scene.bodies[b].spacing;
+    for (long i : ids) {
+      if (cond.type == ConditionSpec::Type::traction &&
+          (cond.face < 0 ? !P.surface[size_t(i)] : !(P.surface[size_t(i)] & (1u << cond.face))))
+        continue;
+      sel.ids.push_back(i);
+      if (cond.type == ConditionSpec::Type::traction) sel.area.push_back(dim == 3 ? dp * dp : dp);  // 2-D: 1 m deep
+    }
+    if (sel.ids.empty())
+      throw SceneError(path, ids.empty() ? "a selection with no particle" : "a selection with no surface particle",
+                       "a selection that holds at least one " +
+                           std::string(cond.type == ConditionSpec::Type::traction ? "surface " : "") +
+                           "particle of body '" + cond.body + "'");
+    const char* axis_name[3] = {"x", "y", "z"};
+    for (int a = 0; a < dim; ++a)
+      if (!cond.value[size_t(a)].empty())
+        compile_particle_expression(cond.value[size_t(a)], scene, b, path + "/" + axis_name[a]);
+    P.condition_particles.push_back(std::move(sel));
+  }
+
+  for (size_t k = 0; k < scene.measure_planes.size(); ++k)
+    P.measure_particles.push_back(
+        measure_plane_particles(scene, scene.measure_planes[k], "/measure_planes/" + std::to_string(k), P));
 
   for (size_t k = 0; k < scene.probes.size(); ++k) {
     const ProbeSpec& probe = scene.probes[k];

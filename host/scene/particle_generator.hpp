@@ -24,6 +24,17 @@ struct InitialParticles {
   std::vector<Range> body_range;                   // particles of body b are [begin, end)
   std::vector<std::vector<long>> probe_particles;  // ids of each probe's particles (averaged)
   std::vector<long> constrained_count;             // per body
+  std::vector<std::vector<long>> clamp_particles;  // ids each clamp holds (a particle counts for its first clamp)
+  // Per scene.conditions entry: the selected ids and, for tractions, the
+  // surface area each carries (only surface particles of the selection).
+  struct Selected {
+    std::vector<long> ids;
+    std::vector<double> area;
+  };
+  std::vector<Selected> condition_particles;
+  std::vector<std::vector<long>> measure_particles;  // ids each measure plane holds
+  std::vector<unsigned char> surface;                // faces a particle exposes, 0 inside (surface.hpp)
+  std::vector<Point3> displacement;                  // initial displacement; empty when no body sets one
 
   size_t size() const { return position.size(); }
 };

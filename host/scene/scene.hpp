@@ -30,12 +30,39 @@ struct BodySpec {
   Shape geometry;
   double spacing = 0;
   MaterialSpec material;
-  std::array<std::string, 3> initial_velocity{"0", "0", "0"};  // expressions
+  std::array<std::string, 3> initial_velocity{"0", "0", "0"};   // expressions
+  std::array<std::string, 3> initial_displacement{"", "", ""};  // expressions; "" = none
 };
 
 struct ClampSpec {
+  std::string name;  // column prefix in reactions.csv; default clamp<k>
   std::string body;
   Shape region;
+};
+
+// Which particles of a body a condition or load acts on: the whole body, the
+// particles inside a region, or those where an expression of x0 y0 z0 (and
+// the constants) is non-zero.
+struct SelectionSpec {
+  enum class Kind { body, region, expression };
+  Kind kind = Kind::body;
+  Shape region;
+  std::string expression;
+};
+
+// A prescribed velocity (seed 001 "bcvel") or a load ("bcforce"): one
+// expression per component, empty where the component is not given, applied
+// while t_start <= t <= t_end.
+struct ConditionSpec {
+  enum class Type { velocity, point_force, traction, acceleration };
+  Type type = Type::velocity;
+  std::string name;  // column prefix in reactions.csv / loads.csv
+  std::string body;
+  SelectionSpec select;
+  std::array<std::string, 3> value;  // "" = not given
+  int face = -1;                     // traction: only particles exposing face 2a (-e_a) or 2a + 1 (+e_a); -1 any
+  double t_start = 0;
+  double t_end = 1e300;
 };
 
 struct ProbeSpec {
@@ -43,6 +70,17 @@ struct ProbeSpec {
   Point3 point{0, 0, 0};
   double radius = 0;                // 0: the nearest particle; > 0: mean over the particles within it
   std::vector<std::string> fields;  // position, displacement, velocity, von_mises, J
+};
+
+// A measure plane (seed 001 Fig. 7): the particles within thickness / 2 of a
+// planar quadrilateral (3-D, 4 corners) or a segment (2-D, 2 ends) in the
+// reference configuration; their mean displacement and total force are
+// written over time to measure_<name>.csv.
+struct MeasurePlaneSpec {
+  std::string name;
+  std::string body;  // "" = every body
+  std::vector<Point3> points;
+  double thickness = 0;
 };
 
 struct SolverSpec {
@@ -76,7 +114,9 @@ struct Scene {
   SolverSpec solver;
   std::vector<BodySpec> bodies;
   std::vector<ClampSpec> clamps;
+  std::vector<ConditionSpec> conditions;  // velocity_conditions, then loads
   std::vector<ProbeSpec> probes;
+  std::vector<MeasurePlaneSpec> measure_planes;
   OutputSpec output;
   Bounds bounds;  // particles leaving it stop the run
   std::vector<std::pair<std::string, double>> constants;

@@ -33,8 +33,6 @@ void line_column(const std::string& text, size_t byte, size_t& line, size_t& col
   }
 }
 
-Shape read_shape(JsonNode node, int dim);
-
 Shape read_shape_list(JsonNode& node, const std::string& key, Shape::Kind kind, int dim, size_t min_size) {
   Shape s;
   s.kind = kind;
@@ -42,6 +40,8 @@ Shape read_shape_list(JsonNode& node, const std::string& key, Shape::Kind kind, 
   for (size_t k = 0; k < items.size(); ++k) s.children.push_back(read_shape(node.element(key, k, *items[k]), dim));
   return s;
 }
+
+}  // namespace
 
 // A shape is an object with exactly one of: box {min, max}, union [...], difference [...].
 Shape read_shape(JsonNode node, int dim) {
@@ -72,6 +72,8 @@ Shape read_shape(JsonNode node, int dim) {
   node.finish();
   return s;
 }
+
+namespace {
 
 MaterialSpec read_material(JsonNode m) {
   MaterialSpec spec;
@@ -250,6 +252,10 @@ Scene read_scene(const Json& doc, Json& resolved) {
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < dim; ++a) body.initial_velocity[size_t(a)] = v.expression(axes[a], "0");
     v.finish();
+    if (auto u = node.optional_object("initial_displacement")) {
+      for (int a = 0; a < dim; ++a) body.initial_displacement[size_t(a)] = u->expression(axes[a], "0");
+      u->finish();
+    }
     node.finish();
     scene.bodies.push_back(body);
   }
@@ -258,6 +264,7 @@ Scene read_scene(const Json& doc, Json& resolved) {
   for (size_t c = 0; c < clamps.size(); ++c) {
     JsonNode node = root.element("clamps", c, *clamps[c]);
     ClampSpec clamp;
+    clamp.name = node.string("name", "clamp" + std::to_string(c));
     clamp.body = node.string("body");
     if (!names.count(clamp.body))
       throw SceneError(node.key_path("body"), "\"" + clamp.body + "\"", "the name of a body");
@@ -265,6 +272,9 @@ Scene read_scene(const Json& doc, Json& resolved) {
     node.finish();
     scene.clamps.push_back(clamp);
   }
+
+  read_conditions(root, scene, names);
+  read_measure_planes(root, scene, names);
 
   auto probes = root.array("probes", false);
   std::set<std::string> probe_names;

@@ -2,6 +2,7 @@
 // overrides (--set path=value), validate every key into a Scene and keep the
 // resolved document (defaults filled in) for run.json.
 #pragma once
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ Json parse_scene_json(const std::string& text, const std::string& source_name);
 // bodies.plate.material.poisson_ratio=0.4, constants.vf=0.1. The value is
 // parsed as JSON, else taken as a string.
 void apply_override(Json& doc, const std::string& assignment);
+
+// A shape object (box, union, difference) of the given dimension.
+Shape read_shape(JsonNode node, int dim);
+
+// velocity_conditions[] and loads[] into scene.conditions (condition_reader.cpp).
+void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
+
+// measure_planes[] into scene.measure_planes (measure_plane_reader.cpp).
+void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 
 // Validates the document into a Scene; fills `resolved`.
 Scene read_scene(const Json& doc, Json& resolved);

@@ -24,10 +24,28 @@ struct Snapshot {
   std::vector<double> von_mises, jacobian, hourglass;    // n
 };
 
+// Energies of one body (J; per metre of depth in 2-D). Work done on the body
+// by its loads (external) and by its velocity conditions and clamps
+// (boundary), accumulated over the run. Plastic and fracture dissipation are
+// zero until those models exist.
+struct BodyEnergy {
+  double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0;
+  // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc.
+  double balance() const { return kinetic + strain + plastic + fracture - external_work - boundary_work; }
+};
+
 struct EnergySample {
   double kinetic = 0, strain = 0;
   Point3 momentum{0, 0, 0};
   double hourglass_max = 0, hourglass_mean = 0;
+  std::vector<BodyEnergy> bodies;
+};
+
+// Force sum of one clamp or velocity condition (its reaction) or load (the
+// applied force) over the last step, N (per metre of depth in 2-D).
+struct BoundaryForceSample {
+  std::string name;
+  Point3 force{0, 0, 0};
 };
 
 struct ProbeSample {
@@ -45,6 +63,13 @@ struct SetupReport {
   double bytes_per_particle = 0;
 };
 
+// A measure plane's particles: mean displacement [m] and total force
+// sum m_i a_i [N; 2-D per metre of depth] (seed 001 Fig. 7).
+struct MeasureSample {
+  Point3 displacement{0, 0, 0};
+  Point3 force{0, 0, 0};
+};
+
 class Solver {
  public:
   virtual ~Solver() = default;
@@ -60,6 +85,9 @@ class Solver {
   virtual Snapshot snapshot() = 0;
   virtual EnergySample energies() = 0;
   virtual std::vector<ProbeSample> probes() = 0;
+  // Clamps, then velocity conditions and loads in scene order.
+  virtual std::vector<BoundaryForceSample> boundary_forces() = 0;
+  virtual std::vector<MeasureSample> measures() = 0;  // scene.measure_planes order
   virtual const StageTimers& timers() const = 0;
   virtual void reset_timers() = 0;  // after warm-up steps
   virtual SetupReport setup_report() const = 0;

@@ -6,10 +6,15 @@
 //                    hourglass variant matrices            (eq. 3, 7, 25-28)
 //   force            per body: gathered pair sums (eq. 20, 27, 32), then
 //                    v to t + dt                           (eq. 36)
-//   boundary         clamps
+//   loads            per load: v += dt f/m at t + dt/2 (conditions.hpp)
+//   boundary         velocity conditions at t + dt, then clamps, with reactions
 //   deformation_rate dF/dt at the new velocity (eq. 22), F, u to t + dt
 //                    (eq. 37), reduced to max |v|, max |a| and health
 //   time_step        next dt on the host                   (eq. 38)
+// Positions are stored as displacements u = x - X, so that in single precision
+// the small increments dt v keep their full relative accuracy.
+// Positions are stored as displacements u = x - X, so that in single precision
+// the small increments dt v keep their full relative accuracy.
 // Each stage is timed on its own. Include after the backend header.
 #pragma once
 #include <algorithm>
@@ -27,10 +32,10 @@
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
 #include "host/solver/tlsph_body_kernels.hpp"
+#include "host/solver/tlsph_conditions.hpp"
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
 #include "kernels/tlsph/hourglass_indicator.hpp"
-#include "kernels/tlsph/kinematics.hpp"
 #include "kernels/tlsph/step_statistics.hpp"
 
 namespace mfsd {
@@ -40,6 +45,14 @@ template <int D, class Real>
 struct IdentityFunctor {
   Mat<D, Real>* m;
   MFSD_HD void operator()(Index i) const { m[i] = Mat<D, Real>::identity(); }
+};
+
+// F = I + grad u (initial displacement field).
+template <int D, class Real>
+struct AddIdentityFunctor {
+  const Mat<D, Real>* grad_u;
+  Mat<D, Real>* F;
+  MFSD_HD void operator()(Index i) const { F[i] = Mat<D, Real>::identity() + grad_u[i]; }
 };
 
 // Copies selected particles' fields into a small buffer (probes).
@@ -65,6 +78,26 @@ struct ProbeGatherFunctor {
   }
 };
 
+// Displacement and force m a of measure-plane particles into a small buffer.
+template <int D, class Real>
+struct MeasureGatherFunctor {
+  const Index* index;
+  const Vec<D, Real>* displacement;
+  const Vec<D, Real>* acceleration;
+  const Real* volume;
+  const Real* density;  // per measured particle (its body's rho0)
+  Real* out;            // per particle: u(D) f(D)
+  MFSD_HD void operator()(Index k) const {
+    const Index i = index[k];
+    Real* o = out + k * (2 * D);
+    const Real m = density[k] * volume[i];
+    for (int a = 0; a < D; ++a) {
+      o[a] = displacement[i].v[a];
+      o[D + a] = m * acceleration[i].v[a];
+    }
+  }
+};
+
 template <class Real>
 struct MaxPlus {
   MFSD_HD Real operator()(Real a, Real b) const { return math::max(a, b); }
@@ -87,7 +120,11 @@ class TlsphSolver final : public Solver {
       : scene_(scene), init_(init), particles_(Index(init.size())) {
     for (const auto& p : scene.probes)
       for (const auto& f : p.fields) probes_need_stress_ = probes_need_stress_ || f == "von_mises" || f == "J";
-    for (const char* name : {"stress", "force", "boundary", "deformation_rate", "time_step"}) timers_.id(name);
+    bool loads = false;
+    for (const auto& c : scene.conditions) loads = loads || c.type != ConditionSpec::Type::velocity;
+    for (const char* name : {"stress", "force", "loads", "boundary", "deformation_rate", "time_step"})
+      if (loads || std::string(name) != "loads") timers_.id(name);
+    has_loads_ = loads;
   }
 
   void initialize() override {
@@ -131,15 +168,11 @@ class TlsphSolver final : public Solver {
 
     for (size_t b = 0; b < scene_.bodies.size(); ++b) bodies_.push_back(make_body_kernels(b));
 
-    // Constrained particles and probe particles, located after reordering.
+    // Clamps, conditions, loads and probe particles, located after reordering.
     const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
-    const auto constrained = to_host<B>(particles_.template buffer<unsigned char>(field::constrained));
-    std::vector<Index> clamp_list, where(ids.size());
-    for (size_t k = 0; k < ids.size(); ++k) {
-      where[size_t(ids[k])] = Index(k);
-      if (constrained[k]) clamp_list.push_back(Index(k));
-    }
-    from_host<B>(clamp_list, constrained_list_);
+    std::vector<Index> where(ids.size());
+    for (size_t k = 0; k < ids.size(); ++k) where[size_t(ids[k])] = Index(k);
+    conditions_.setup(scene_, init_, where, particles_.template get<Index>(field::id));
     std::vector<Index> probe_index;
     probe_offsets_.assign(1, 0);
     for (const auto& members : init_.probe_particles) {
@@ -147,7 +180,29 @@ class TlsphSolver final : public Solver {
       probe_offsets_.push_back(probe_index.size());
     }
     from_host<B>(probe_index, probe_index_);
+    std::vector<Index> measure_index;
+    std::vector<Real> measure_density;
+    measure_offsets_.assign(1, 0);
+    for (const auto& members : init_.measure_particles) {
+      for (long id : members) {
+        measure_index.push_back(where[size_t(id)]);
+        measure_density.push_back(Real(scene_.bodies[size_t(init_.body[size_t(id)])].material.density));
+      }
+      measure_offsets_.push_back(measure_index.size());
+    }
+    from_host<B>(measure_index, measure_index_);
+    from_host<B>(measure_density, measure_density_);
+    measure_buffer_.resize(measure_index.size() * 2 * D);
     probe_buffer_.resize(probe_index.size() * (3 * D + 2));
+
+    // An initial displacement field deforms the body: F = I + grad u (seed 000
+    // eq. 22 with u in place of v).
+    if (!init_.displacement.empty()) {
+      parallel_for<B>(n,
+                      DeformationRateFunctor<D, Real>{v_.pairs, v_.displacement, v_.correction, v_.deformation_rate});
+      parallel_for<B>(n, AddIdentityFunctor<D, Real>{v_.deformation_rate, v_.deformation_gradient});
+    }
+    conditions_.apply_initial(v_);  // velocity conditions at t = 0, clamps
 
     // Initial rates and forces, so that the first time step sees them.
     parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
@@ -185,10 +240,8 @@ class TlsphSolver final : public Solver {
     run("force", [&] {
       for (auto& k : bodies_) k->acceleration(v_, Real(dt));
     });
-    run("boundary", [&] {
-      parallel_for<B>(Index(constrained_list_.size()),
-                      ClampFunctor<D, Real>{raw(constrained_list_), v_.displacement, v_.velocity});
-    });
+    if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1); });
+    run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1); });
     StepStatistics<Real> stats;
     run("deformation_rate", [&] {
       RateHalfStepFunctor<D, Real> f{
@@ -243,11 +296,17 @@ class TlsphSolver final : public Solver {
 
   EnergySample energies() override {
     EnergySample e;
-    for (auto& k : bodies_) {
-      const EnergySums s = k->energy(v_);
+    for (size_t b = 0; b < bodies_.size(); ++b) {
+      const EnergySums s = bodies_[b]->energy(v_);
       e.kinetic += s.kinetic;
       e.strain += s.strain;
       for (int a = 0; a < 3; ++a) e.momentum[a] += s.momentum[a];
+      BodyEnergy be;
+      be.kinetic = s.kinetic;
+      be.strain = s.strain;
+      be.external_work = conditions_.external_work(b);
+      be.boundary_work = conditions_.boundary_work(b);
+      e.bodies.push_back(be);
     }
     compute_hourglass_indicator();
     const Index n = particles_.size();
@@ -256,6 +315,26 @@ class TlsphSolver final : public Solver {
     e.hourglass_mean =
         n ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator}, 0.0, thrust::plus<double>{}) / n : 0.0;
     return e;
+  }
+
+  std::vector<BoundaryForceSample> boundary_forces() override { return conditions_.forces(); }
+
+  std::vector<MeasureSample> measures() override {
+    std::vector<MeasureSample> out(measure_offsets_.size() - 1);
+    if (out.empty()) return out;
+    parallel_for<B>(Index(measure_index_.size()),
+                    MeasureGatherFunctor<D, Real>{raw(measure_index_), v_.displacement, v_.acceleration, v_.volume,
+                                                  raw(measure_density_), raw(measure_buffer_)});
+    const auto h = to_host<B>(measure_buffer_);
+    for (size_t k = 0; k < out.size(); ++k) {
+      const double w = 1.0 / double(measure_offsets_[k + 1] - measure_offsets_[k]);
+      for (size_t m = measure_offsets_[k]; m < measure_offsets_[k + 1]; ++m)
+        for (int a = 0; a < D; ++a) {
+          out[k].displacement[a] += w * double(h[m * 2 * D + a]);
+          out[k].force[a] += double(h[m * 2 * D + D + a]);
+        }
+    }
+    return out;
   }
 
   // Each probe is the mean over its particles (one, or those within its radius).
@@ -327,6 +406,12 @@ class TlsphSolver final : public Solver {
     particles_.template add<Vec<D, Real>>(field::velocity);
     from_host<B>(v, particles_.template buffer<Vec<D, Real>>(field::velocity));
     particles_.template add<Vec<D, Real>>(field::displacement);
+    if (!init_.displacement.empty()) {
+      std::vector<Vec<D, Real>> u(n);
+      for (size_t i = 0; i < n; ++i)
+        for (int a = 0; a < D; ++a) u[i].v[a] = Real(init_.displacement[i][a]);
+      from_host<B>(u, particles_.template buffer<Vec<D, Real>>(field::displacement));
+    }
     particles_.template add<Real>(field::volume);
     from_host<B>(volume, particles_.template buffer<Real>(field::volume));
   }
@@ -478,11 +563,16 @@ class TlsphSolver final : public Solver {
   ReferenceNeighborList<B, D, Real> pairs_;
   std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
-  DeviceVector<B, Index> constrained_list_;
+  TlsphConditions<B, D, Real> conditions_;
+  bool has_loads_ = false;
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};
   bool probes_need_stress_ = false;  // von_mises or J requested by a probe
   DeviceVector<B, Real> probe_buffer_;
+  DeviceVector<B, Index> measure_index_;  // all measure planes' particles, plane k at [offsets[k], offsets[k+1])
+  DeviceVector<B, Real> measure_density_;
+  std::vector<size_t> measure_offsets_{0};
+  DeviceVector<B, Real> measure_buffer_;
   TlsphViews<D, Real> v_{};
   StageClock<B> clock_;
   StageTimers timers_;

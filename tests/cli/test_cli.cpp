@@ -108,7 +108,13 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   EXPECT_EQ(header, "time,tip.position.x,tip.position.y,tip.von_mises");
   std::ifstream energies(fs::path(out()) / "energies.csv");
   std::getline(energies, header);
-  EXPECT_EQ(header, "time,kinetic,strain,total,hourglass_max,hourglass_mean");
+  EXPECT_EQ(header,
+            "time,kinetic,strain,total,hourglass_max,hourglass_mean,external_work,boundary_work,plastic,fracture,"
+            "balance,block.kinetic,block.strain,block.plastic,block.fracture,block.external_work,"
+            "block.boundary_work,block.balance");
+  std::ifstream forces(fs::path(out()) / "boundary_forces.csv");
+  std::getline(forces, header);
+  EXPECT_EQ(header, "time,clamp0.x,clamp0.y");
   const auto timing = nlohmann::json::parse(std::ifstream(fs::path(out()) / "timing.json"));
   for (const char* k : {"particles", "steps", "wall_seconds", "particle_steps_per_second", "stages"})
     EXPECT_TRUE(timing.contains(k)) << k;

@@ -1,0 +1,110 @@
+#include "host/driver/output_rows.hpp"
+
+namespace mfsd {
+
+std::vector<std::string> probe_columns(const Scene& scene) {
+  std::vector<std::string> cols{"time"};
+  const char* axes[3] = {"x", "y", "z"};
+  for (auto& p : scene.probes)
+    for (auto& f : p.fields) {
+      if (f == "von_mises" || f == "J") {
+        cols.push_back(p.name + "." + f);
+      } else {
+        for (int a = 0; a < scene.dimension; ++a) cols.push_back(p.name + "." + f + "." + axes[a]);
+      }
+    }
+  return cols;
+}
+
+std::vector<double> probe_row(const Scene& scene, double time, const std::vector<ProbeSample>& s) {
+  std::vector<double> row{time};
+  for (size_t k = 0; k < scene.probes.size(); ++k)
+    for (auto& f : scene.probes[k].fields) {
+      if (f == "von_mises") {
+        row.push_back(s[k].von_mises);
+      } else if (f == "J") {
+        row.push_back(s[k].jacobian);
+      } else {
+        const Point3& v = f == "position" ? s[k].position : (f == "displacement" ? s[k].displacement : s[k].velocity);
+        for (int a = 0; a < scene.dimension; ++a) row.push_back(v[a]);
+      }
+    }
+  return row;
+}
+
+namespace {
+const char* kBodyEnergyColumns[] = {"kinetic", "strain", "plastic", "fracture", "external_work", "boundary_work",
+                                    "balance"};
+}
+
+// Totals first (the columns earlier versions wrote keep their places), then
+// per body <name>.<quantity>.
+std::vector<std::string> energy_columns(const Scene& scene) {
+  std::vector<std::string> cols{"time",          "kinetic",        "strain",  "total",    "hourglass_max",
+                                "hourglass_mean", "external_work", "boundary_work", "plastic", "fracture",
+                                "balance"};
+  for (auto& b : scene.bodies)
+    for (const char* q : kBodyEnergyColumns) cols.push_back(b.name + "." + q);
+  return cols;
+}
+
+std::vector<double> energy_row(double time, const EnergySample& e) {
+  BodyEnergy sum;
+  for (auto& b : e.bodies) {
+    sum.external_work += b.external_work;
+    sum.boundary_work += b.boundary_work;
+    sum.plastic += b.plastic;
+    sum.fracture += b.fracture;
+  }
+  sum.kinetic = e.kinetic;
+  sum.strain = e.strain;
+  std::vector<double> row{time,
+                          e.kinetic,
+                          e.strain,
+                          e.kinetic + e.strain,
+                          e.hourglass_max,
+                          e.hourglass_mean,
+                          sum.external_work,
+                          sum.boundary_work,
+                          sum.plastic,
+                          sum.fracture,
+                          sum.balance()};
+  for (auto& b : e.bodies)
+    row.insert(row.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.balance()});
+  return row;
+}
+
+std::vector<std::string> boundary_force_columns(const Scene& scene) {
+  std::vector<std::string> cols{"time"};
+  const char* axes[3] = {"x", "y", "z"};
+  auto add = [&](const std::string& name) {
+    for (int a = 0; a < scene.dimension; ++a) cols.push_back(name + "." + axes[a]);
+  };
+  for (auto& c : scene.clamps) add(c.name);
+  for (auto& c : scene.conditions) add(c.name);
+  return cols;
+}
+
+std::vector<double> boundary_force_row(const Scene& scene, double time, const std::vector<BoundaryForceSample>& s) {
+  std::vector<double> row{time};
+  for (auto& f : s)
+    for (int a = 0; a < scene.dimension; ++a) row.push_back(f.force[a]);
+  return row;
+}
+
+std::vector<std::string> measure_columns(const Scene& scene) {
+  std::vector<std::string> cols{"time", "particles"};
+  const char* axes[3] = {"x", "y", "z"};
+  for (const char* q : {"u", "force"})
+    for (int a = 0; a < scene.dimension; ++a) cols.push_back(std::string(q) + "." + axes[a]);
+  return cols;
+}
+
+std::vector<double> measure_row(const Scene& scene, double time, size_t count, const MeasureSample& s) {
+  std::vector<double> row{time, double(count)};
+  for (int a = 0; a < scene.dimension; ++a) row.push_back(s.displacement[a]);
+  for (int a = 0; a < scene.dimension; ++a) row.push_back(s.force[a]);
+  return row;
+}
+
+}  // namespace mfsd

@@ -1,0 +1,99 @@
+// velocity_conditions[] and loads[] of a scene (docs/scene-reference.md):
+// seed 001's bcvel and bcforce cards as JSON. Expressions are kept as text
+// here and compiled by the particle generator, which knows the body constants.
+#include <algorithm>
+#include <set>
+#include <vector>
+#include <string>
+
+#include "host/scene/scene_error.hpp"
+#include "host/scene/scene_reader.hpp"
+
+namespace mfsd {
+
+namespace {
+
+SelectionSpec read_selection(JsonNode& node, int dim) {
+  SelectionSpec s;
+  const int given = int(node.has("region")) + int(node.has("where"));
+  if (given > 1) throw SceneError(node.path(), "both \"region\" and \"where\"", "at most one selection");
+  if (node.has("region")) {
+    s.kind = SelectionSpec::Kind::region;
+    s.region = read_shape(node.object("region"), dim);
+  } else if (node.has("where")) {
+    s.kind = SelectionSpec::Kind::expression;
+    s.expression = node.expression("where", "1");
+  }
+  return s;
+}
+
+void read_components(JsonNode& node, ConditionSpec& c, int dim) {
+  const char* axes[3] = {"x", "y", "z"};
+  bool any = false;
+  for (int a = 0; a < dim; ++a)
+    if (node.has(axes[a])) {
+      c.value[size_t(a)] = node.expression(axes[a], "");
+      any = true;
+    }
+  if (!any)
+    throw SceneError(node.path(), "no component", dim == 3 ? "at least one of \"x\", \"y\", \"z\"" : "\"x\" or \"y\"");
+}
+
+void read_window(JsonNode& node, ConditionSpec& c) {
+  c.t_start = node.number("t_start", 0.0, Range::non_negative());
+  c.t_end = node.number("t_end", 1e300, Range::non_negative());
+  if (!(c.t_end >= c.t_start))
+    throw SceneError(node.key_path("t_end"), std::to_string(c.t_end), "a time >= t_start");
+}
+
+}  // namespace
+
+void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names) {
+  const int dim = scene.dimension;
+  std::set<std::string> names;
+  for (auto& c : scene.clamps)
+    if (!names.insert(c.name).second)
+      throw SceneError("/clamps", "two clamps named \"" + c.name + "\"", "unique names");
+  auto read_common = [&](JsonNode& node, ConditionSpec& c, const std::string& default_name) {
+    c.name = node.string("name", default_name);
+    if (!names.insert(c.name).second)
+      throw SceneError(node.key_path("name"), "\"" + c.name + "\"", "a name no other clamp, condition or load has");
+    c.body = node.string("body");
+    if (!body_names.count(c.body)) throw SceneError(node.key_path("body"), "\"" + c.body + "\"", "the name of a body");
+    c.select = read_selection(node, dim);
+    read_components(node, c, dim);
+    read_window(node, c);
+  };
+
+  auto velocity = root.array("velocity_conditions", false);
+  for (size_t k = 0; k < velocity.size(); ++k) {
+    JsonNode node = root.element("velocity_conditions", k, *velocity[k]);
+    ConditionSpec c;
+    c.type = ConditionSpec::Type::velocity;
+    read_common(node, c, "velocity" + std::to_string(k));
+    node.finish();
+    scene.conditions.push_back(c);
+  }
+  auto loads = root.array("loads", false);
+  for (size_t k = 0; k < loads.size(); ++k) {
+    JsonNode node = root.element("loads", k, *loads[k]);
+    ConditionSpec c;
+    const std::string type = node.choice("type", {"point", "traction", "acceleration"});
+    c.type = type == "point"      ? ConditionSpec::Type::point_force
+             : type == "traction" ? ConditionSpec::Type::traction
+                                  : ConditionSpec::Type::acceleration;
+    read_common(node, c, "load" + std::to_string(k));
+    if (node.has("face")) {
+      if (c.type != ConditionSpec::Type::traction)
+        throw SceneError(node.key_path("face"), "a face on a " + type + " load", "\"face\" only on traction loads");
+      std::vector<std::string> faces = {"-x", "+x", "-y", "+y"};
+      if (dim == 3) faces.insert(faces.end(), {"-z", "+z"});
+      const std::string f = node.choice("face", faces);
+      c.face = int(std::find(faces.begin(), faces.end(), f) - faces.begin());
+    }
+    node.finish();
+    scene.conditions.push_back(c);
+  }
+}
+
+}  // namespace mfsd

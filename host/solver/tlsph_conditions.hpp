@@ -1,0 +1,231 @@
+// Clamps, velocity conditions and loads of a TLSPH run on one backend: the
+// selected particles (in the solver's order), the compiled expressions on
+// the device, and the work and force sums they produce for energies.csv and
+// boundary_forces.csv. The functors are in kernels/tlsph/conditions.hpp.
+// Include after the backend header.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/backend/algorithms.hpp"
+#include "host/expr/program.hpp"
+#include "host/scene/particle_expressions.hpp"
+#include "host/scene/particle_generator.hpp"
+#include "host/solver/numerical_failure.hpp"
+#include "host/solver/solver.hpp"
+#include "host/solver/tlsph_views.hpp"
+#include "kernels/tlsph/conditions.hpp"
+
+namespace mfsd {
+
+template <class B, int D, class Real>
+class TlsphConditions {
+ public:
+  // `where[id]` is the current index of the particle with original id `id`.
+  // `id` is the particle id field (for error reports).
+  void setup(const Scene& scene, const InitialParticles& init, const std::vector<Index>& where, const Index* id) {
+    scene_ = &scene;
+    id_ = id;
+    body_external_work_.assign(scene.bodies.size(), 0.0);
+    body_boundary_work_.assign(scene.bodies.size(), 0.0);
+    std::map<std::string, size_t> body_index;
+    for (size_t b = 0; b < scene.bodies.size(); ++b) body_index[scene.bodies[b].name] = b;
+    for (size_t c = 0; c < scene.clamps.size(); ++c) {
+      Clamp k;
+      k.name = scene.clamps[c].name;
+      k.body = body_index.at(scene.clamps[c].body);
+      upload_indices(init.clamp_particles[c], where, k.particles);
+      clamps_.push_back(std::move(k));
+    }
+    for (size_t c = 0; c < scene.conditions.size(); ++c) {
+      const ConditionSpec& spec = scene.conditions[c];
+      auto cond = std::make_unique<Condition>();
+      cond->spec = &spec;
+      cond->body = body_index.at(spec.body);
+      const auto& sel = init.condition_particles[c];
+      upload_indices(sel.ids, where, cond->particles);
+      std::vector<Real> area(sel.area.begin(), sel.area.end());
+      from_host<B>(area, cond->area);
+      cond->count = sel.ids.size();
+      const char* axis[3] = {"x", "y", "z"};
+      for (int a = 0; a < D; ++a) {
+        ComponentValue<Real>& cv = cond->component[a];
+        cv = ComponentValue<Real>{ComponentValue<Real>::none, Real(0), {nullptr, 0, nullptr, 0}};
+        if (spec.value[size_t(a)].empty()) continue;
+        cond->program[a] = compile_particle_expression(spec.value[size_t(a)], scene, cond->body,
+                                                       condition_path(c) + "/" + axis[a]);
+        const expr::Program& p = cond->program[a];
+        if (p.is_constant()) {
+          cv.kind = ComponentValue<Real>::constant;
+          cv.value = Real(p.constant_value());
+          continue;
+        }
+        const auto view = p.template host_view<Real>();  // checks float range
+        from_host<B>(p.code(), cond->code[a]);
+        from_host<B>(std::vector<Real>(view.consts, view.consts + view.n_consts), cond->consts[a]);
+        cv.kind = ComponentValue<Real>::program;
+        cv.code = expr::ProgramView<Real>{raw(cond->code[a]), int(p.code().size()), raw(cond->consts[a]),
+                                          view.n_consts};
+      }
+      conditions_.push_back(std::move(cond));
+    }
+  }
+
+  bool empty() const { return clamps_.empty() && conditions_.empty(); }
+
+  // Velocity conditions whose window holds t = 0, at set-up (no reaction).
+  void apply_initial(const TlsphViews<D, Real>& v) {
+    for (auto& c : conditions_)
+      if (c->spec->type == ConditionSpec::Type::velocity && c->active(0.0)) velocity(*c, v, 0.0, 0.0);
+    for (auto& k : clamps_) clamp(k, v, 0.0);
+  }
+
+  // Loads at t + dt/2, after the force stage (t: time at the start of the step).
+  void apply_loads(const TlsphViews<D, Real>& v, double t, double dt, long step) {
+    const double te = t + 0.5 * dt;
+    for (auto& c : conditions_) {
+      if (c->spec->type == ConditionSpec::Type::velocity) continue;
+      c->force = Point3{0, 0, 0};
+      if (!c->active(te)) continue;
+      const Index n = Index(c->count);
+      LoadFunctor<D, Real> f{raw(c->particles),
+                             c->spec->type == ConditionSpec::Type::traction ? raw(c->area) : nullptr,
+                             {c->component[0], c->component[1], c->component[2]},
+                             c->spec->type == ConditionSpec::Type::point_force ? LoadType::point
+                             : c->spec->type == ConditionSpec::Type::traction  ? LoadType::traction
+                                                                               : LoadType::acceleration,
+                             Real(1.0 / double(n)),
+                             Real(scene_->bodies[c->body].material.density),
+                             Real(te),
+                             Real(dt),
+                             Real(scene_->bodies[c->body].spacing),
+                             v.reference_position,
+                             v.displacement,
+                             v.volume,
+                             v.velocity,
+                             v.acceleration};
+      const ConditionSums s = transform_reduce<B>(0, n, f, ConditionSums::zero(), ConditionSumsCombine{});
+      finish(*c, s, v, te, step);
+      body_external_work_[c->body] += s.power * dt;
+    }
+  }
+
+  // Velocity conditions at t + dt, then clamps (clamps win where both hold).
+  void apply_boundary(const TlsphViews<D, Real>& v, double t, double dt, long step) {
+    const double te = t + dt;
+    for (auto& c : conditions_) {
+      if (c->spec->type != ConditionSpec::Type::velocity) continue;
+      c->force = Point3{0, 0, 0};
+      if (!c->active(te)) continue;
+      const ConditionSums s = velocity(*c, v, te, dt);
+      finish(*c, s, v, te, step);
+      body_boundary_work_[c->body] += s.power * dt;
+    }
+    for (auto& k : clamps_) clamp(k, v, dt);
+  }
+
+  double external_work(size_t body) const { return body_external_work_[body]; }
+  double boundary_work(size_t body) const { return body_boundary_work_[body]; }
+
+  // Reactions of clamps and velocity conditions, applied forces of loads.
+  std::vector<BoundaryForceSample> forces() const {
+    std::vector<BoundaryForceSample> out;
+    for (auto& k : clamps_) out.push_back({k.name, k.force});
+    for (auto& c : conditions_) out.push_back({c->spec->name, c->force});
+    return out;
+  }
+
+ private:
+  struct Clamp {
+    std::string name;
+    size_t body = 0;
+    DeviceVector<B, Index> particles;
+    Point3 force{0, 0, 0};
+  };
+  struct Condition {
+    const ConditionSpec* spec = nullptr;
+    size_t body = 0;
+    size_t count = 0;
+    DeviceVector<B, Index> particles;
+    DeviceVector<B, Real> area;
+    expr::Program program[3];
+    DeviceVector<B, expr::Instr> code[3];
+    DeviceVector<B, Real> consts[3];
+    ComponentValue<Real> component[3]{};
+    Point3 force{0, 0, 0};
+    bool active(double t) const { return t >= spec->t_start && t <= spec->t_end; }
+  };
+
+  static void upload_indices(const std::vector<long>& ids, const std::vector<Index>& where,
+                             DeviceVector<B, Index>& out) {
+    std::vector<Index> index;
+    index.reserve(ids.size());
+    for (long id : ids) index.push_back(where[size_t(id)]);
+    from_host<B>(index, out);
+  }
+
+  std::string condition_path(size_t c) const {
+    size_t k = 0;
+    for (size_t m = 0; m < c; ++m)
+      if ((scene_->conditions[m].type == ConditionSpec::Type::velocity) ==
+          (scene_->conditions[c].type == ConditionSpec::Type::velocity))
+        ++k;
+    return (scene_->conditions[c].type == ConditionSpec::Type::velocity ? "/velocity_conditions/" : "/loads/") +
+           std::to_string(k);
+  }
+
+  ConditionSums velocity(Condition& c, const TlsphViews<D, Real>& v, double te, double dt) {
+    VelocityConditionFunctor<D, Real> f{raw(c.particles),
+                                        {c.component[0], c.component[1], c.component[2]},
+                                        Real(scene_->bodies[c.body].material.density),
+                                        Real(te),
+                                        Real(dt),
+                                        Real(scene_->bodies[c.body].spacing),
+                                        v.reference_position,
+                                        v.displacement,
+                                        v.volume,
+                                        v.acceleration,
+                                        v.velocity};
+    const ConditionSums s =
+        transform_reduce<B>(0, Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{});
+    if (dt == 0.0) finish(c, s, v, te, 0);
+    return s;
+  }
+
+  void clamp(Clamp& k, const TlsphViews<D, Real>& v, double dt) {
+    ClampReactionFunctor<D, Real> f{raw(k.particles), Real(scene_->bodies[k.body].material.density), Real(dt),
+                                    v.volume, v.displacement, v.velocity};
+    const ConditionSums s = transform_reduce<B>(0, Index(k.particles.size()), f, ConditionSums::zero(),
+                                                ConditionSumsCombine{});
+    for (int a = 0; a < 3; ++a) k.force[a] = s.force[a];
+  }
+
+  // Records the force sum; a run-time expression error stops the run with
+  // the condition, the component, the error and the particle.
+  void finish(Condition& c, const ConditionSums& s, const TlsphViews<D, Real>& v, double te, long step) {
+    for (int a = 0; a < 3; ++a) c.force[a] = s.force[a];
+    if (s.error.particle == ConditionSums::kNoError) return;
+    const char* axis[3] = {"x", "y", "z"};
+    const expr::Program& p = c.program[s.error.component];
+    const Index i = s.error.particle;
+    const Vec<D, Real> X = copy_element<B>(v.reference_position, i);
+    std::string where = "x0 = (";
+    for (int a = 0; a < D; ++a) where += (a ? ", " : "") + std::to_string(double(X.v[a]));
+    where += ")";
+    const bool load = c.spec->type != ConditionSpec::Type::velocity;
+    throw NumericalFailure(step, te, long(copy_element<B>(id_, i)), c.spec->body,
+                           std::string(load ? "load '" : "velocity condition '") + c.spec->name + "' component " +
+                               axis[s.error.component],
+                           p.describe_error(expr::Status(s.error.status), s.error.pc) + " at " + where);
+  }
+
+  const Scene* scene_ = nullptr;
+  const Index* id_ = nullptr;
+  std::vector<Clamp> clamps_;
+  std::vector<std::unique_ptr<Condition>> conditions_;
+  std::vector<double> body_external_work_, body_boundary_work_;
+};
+
+}  // namespace mfsd

@@ -1,0 +1,234 @@
+// Boundary conditions and loads on selected particles (seed 001 section
+// 3.3.2, "bcvel" and "bcforce"), one functor call per selected particle, each
+// component either a constant or a user expression (kernels/expr) of the
+// particle variables below. An expression that takes its 'skip' branch leaves
+// that component alone. Both functors return a ConditionSums that the host
+// reduces: the power for the energy balance, the force sum (the reaction of
+// a velocity condition) and the first run-time expression error.
+//
+//   loads      after the force stage, at t + dt/2 with the half-step position
+//              and the velocity after the internal-force update:
+//                point        f_i = F / n        (F shared by the n selected particles)
+//                traction     f_i = T A_i        (A_i: surface area the particle carries)
+//                acceleration f_i = m_i a
+//              v_i += dt f_i / m_i and a_i += f_i / m_i (so the time step sees it);
+//              power f_i . v_mid with v_mid = v_i^n + dt/2 (a_int + a_ext).
+//   velocity   in the boundary stage, at t + dt: v_i = value; the reaction is
+//              the force that makes the change, R_i = m_i (value - v_i) / dt,
+//              and its power R_i . v_mid with v_mid = (v_i^n + value) / 2.
+//              dt = 0 (the set-up at t = 0) sets the velocity only.
+#pragma once
+#include "kernels/core/mat.hpp"
+#include "kernels/expr/interpreter.hpp"
+
+namespace mfsd {
+
+// Variables of particle expressions, in slot order (host/scene/conditions.cpp
+// compiles with the same table).
+enum ParticleVariable : int {
+  var_x0,
+  var_y0,
+  var_z0,
+  var_x,
+  var_y,
+  var_z,
+  var_ux,
+  var_uy,
+  var_uz,
+  var_vx,
+  var_vy,
+  var_vz,
+  var_t,
+  var_dt,
+  var_dx,
+  kParticleVariables
+};
+
+template <int D, class Real>
+MFSD_HD inline void particle_variables(const Vec<D, Real>& X, const Vec<D, Real>& u, const Vec<D, Real>& v, Real t,
+                                       Real dt, Real dx, Real* vars) {
+  for (int a = 0; a < 3; ++a) {
+    vars[var_x0 + a] = a < D ? X.v[a < D ? a : 0] : Real(0);
+    vars[var_ux + a] = a < D ? u.v[a < D ? a : 0] : Real(0);
+    vars[var_x + a] = vars[var_x0 + a] + vars[var_ux + a];
+    vars[var_vx + a] = a < D ? v.v[a < D ? a : 0] : Real(0);
+  }
+  vars[var_t] = t;
+  vars[var_dt] = dt;
+  vars[var_dx] = dx;
+}
+
+// One component of a condition: not given, a constant, or a program.
+template <class Real>
+struct ComponentValue {
+  enum Kind : int { none = 0, constant = 1, program = 2 };
+  int kind;
+  Real value;
+  expr::ProgramView<Real> code;
+};
+
+struct ConditionError {
+  Index particle;  // kNoError when none
+  int component;
+  int pc;
+  int status;  // expr::Status
+};
+
+struct ConditionSums {
+  double power;       // W (per unit thickness in 2-D)
+  double force[3];    // N: sum of applied forces (loads) or reactions (velocity)
+  ConditionError error;  // the lowest-indexed particle with an error
+  static constexpr Index kNoError = Index(0x7fffffff);
+
+  MFSD_HD static ConditionSums zero() { return ConditionSums{0.0, {0.0, 0.0, 0.0}, {kNoError, 0, 0, 0}}; }
+};
+
+struct ConditionSumsCombine {
+  MFSD_HD ConditionSums operator()(const ConditionSums& a, const ConditionSums& b) const {
+    ConditionSums r;
+    r.power = a.power + b.power;
+    for (int k = 0; k < 3; ++k) r.force[k] = a.force[k] + b.force[k];
+    r.error = b.error.particle < a.error.particle ? b.error : a.error;
+    return r;
+  }
+};
+
+// Evaluates the given components of particle i; returns false (and fills
+// `error`) at the first run-time error. mask bit a: component a was set.
+template <int D, class Real>
+MFSD_HD inline bool evaluate_components(const ComponentValue<Real> (&c)[3], const Real* vars, Index i,
+                                        Real (&value)[3], int& mask, ConditionError& error) {
+  mask = 0;
+  for (int a = 0; a < D; ++a) {
+    if (c[a].kind == ComponentValue<Real>::none) continue;
+    if (c[a].kind == ComponentValue<Real>::constant) {
+      value[a] = c[a].value;
+      mask |= 1 << a;
+      continue;
+    }
+    int pc = 0;
+    const expr::Status st = expr::evaluate(c[a].code, vars, &value[a], &pc);
+    if (st == expr::Status::skipped) continue;
+    if (st != expr::Status::ok) {
+      error = ConditionError{i, a, pc, int(st)};
+      return false;
+    }
+    mask |= 1 << a;
+  }
+  return true;
+}
+
+enum class LoadType : int { point, traction, acceleration };
+
+template <int D, class Real>
+struct LoadFunctor {
+  const Index* particles;  // selected particles (current order)
+  const Real* area;        // per selected particle (traction), else null
+  ComponentValue<Real> component[3];
+  LoadType type;
+  Real share;  // 1 / n for point loads
+  Real density;
+  Real t, dt, dx;  // t: evaluation time (t^n + dt/2)
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Real* volume;
+  Vec<D, Real>* velocity;
+  Vec<D, Real>* acceleration;
+
+  MFSD_HD ConditionSums operator()(Index k) const {
+    ConditionSums s = ConditionSums::zero();
+    const Index i = particles[k];
+    Real vars[kParticleVariables];
+    particle_variables<D, Real>(reference_position[i], displacement[i], velocity[i], t, dt, dx, vars);
+    Real value[3] = {Real(0), Real(0), Real(0)};
+    int mask = 0;
+    if (!evaluate_components<D, Real>(component, vars, i, value, mask, s.error)) return s;
+    if (!mask) return s;
+    const Real mass = density * volume[i];
+    Vec<D, Real> f = Vec<D, Real>::zero();
+    for (int a = 0; a < D; ++a) {
+      if (!(mask & (1 << a))) continue;
+      if (type == LoadType::point)
+        f.v[a] = value[a] * share;  // seed 001 bcforce type 1 [N]
+      else if (type == LoadType::traction)
+        f.v[a] = value[a] * area[k];  // type 2 [N/m^2]
+      else
+        f.v[a] = value[a] * mass;  // type 3 [m/s^2]
+    }
+    const Vec<D, Real> a_ext = f * (Real(1) / mass);
+    const Vec<D, Real> v_old = velocity[i] - acceleration[i] * dt;  // v^n
+    const Vec<D, Real> v_mid = v_old + (acceleration[i] + a_ext) * (Real(0.5) * dt);
+    velocity[i] += a_ext * dt;
+    acceleration[i] += a_ext;
+    for (int a = 0; a < D; ++a) {
+      s.power += double(f.v[a]) * double(v_mid.v[a]);
+      s.force[a] = double(f.v[a]);
+    }
+    return s;
+  }
+};
+
+template <int D, class Real>
+struct VelocityConditionFunctor {
+  const Index* particles;
+  ComponentValue<Real> component[3];
+  Real density;
+  Real t, dt, dx;  // t: evaluation time (t^n + dt)
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Real* volume;
+  const Vec<D, Real>* acceleration;  // internal + loads, for v^n
+  Vec<D, Real>* velocity;
+
+  MFSD_HD ConditionSums operator()(Index k) const {
+    ConditionSums s = ConditionSums::zero();
+    const Index i = particles[k];
+    Real vars[kParticleVariables];
+    particle_variables<D, Real>(reference_position[i], displacement[i], velocity[i], t, dt, dx, vars);
+    Real value[3] = {Real(0), Real(0), Real(0)};
+    int mask = 0;
+    if (!evaluate_components<D, Real>(component, vars, i, value, mask, s.error)) return s;
+    if (!mask) return s;
+    const Real mass = density * volume[i];
+    Vec<D, Real> v = velocity[i];
+    for (int a = 0; a < D; ++a) {
+      if (!(mask & (1 << a))) continue;
+      if (dt > Real(0)) {
+        const Real v_old = v.v[a] - acceleration[i].v[a] * dt;
+        const double reaction = double(mass) * double(value[a] - v.v[a]) / double(dt);
+        s.force[a] = reaction;
+        s.power += reaction * 0.5 * (double(v_old) + double(value[a]));
+      }
+      v.v[a] = value[a];
+    }
+    velocity[i] = v;
+    return s;
+  }
+};
+
+// Clamp (formulations.md 1): the particle keeps its reference position and
+// zero velocity; the reaction is the force that stops it, R_i = -m_i v_i / dt
+// (its power is zero: the particle does not move). dt = 0 only clamps.
+template <int D, class Real>
+struct ClampReactionFunctor {
+  const Index* particles;
+  Real density;
+  Real dt;
+  const Real* volume;
+  Vec<D, Real>* displacement;
+  Vec<D, Real>* velocity;
+
+  MFSD_HD ConditionSums operator()(Index k) const {
+    ConditionSums s = ConditionSums::zero();
+    const Index i = particles[k];
+    if (dt > Real(0)) {
+      const double m = double(density) * double(volume[i]);
+      for (int a = 0; a < D; ++a) s.force[a] = -m * double(velocity[i].v[a]) / double(dt);
+    }
+    displacement[i] = Vec<D, Real>::zero();
+    velocity[i] = Vec<D, Real>::zero();
+    return s;
+  }
+};
+
+}  // namespace mfsd
