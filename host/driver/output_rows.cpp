@@ -33,16 +33,16 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
 }
 
 namespace {
-const char* kBodyEnergyColumns[] = {"kinetic", "strain", "plastic", "fracture", "external_work", "boundary_work",
-                                    "balance"};
+const char* kBodyEnergyColumns[] = {"kinetic",       "strain",        "plastic", "fracture",
+                                    "external_work", "boundary_work", "balance"};
 }
 
 // Totals first (the columns earlier versions wrote keep their places), then
 // per body <name>.<quantity>.
 std::vector<std::string> energy_columns(const Scene& scene) {
-  std::vector<std::string> cols{"time",          "kinetic",        "strain",  "total",    "hourglass_max",
-                                "hourglass_mean", "external_work", "boundary_work", "plastic", "fracture",
-                                "balance"};
+  std::vector<std::string> cols{"time",          "kinetic",        "strain",        "total",
+                                "hourglass_max", "hourglass_mean", "external_work", "boundary_work",
+                                "plastic",       "fracture",       "balance"};
   for (auto& b : scene.bodies)
     for (const char* q : kBodyEnergyColumns) cols.push_back(b.name + "." + q);
   return cols;

@@ -3,8 +3,8 @@
 // here and compiled by the particle generator, which knows the body constants.
 #include <algorithm>
 #include <set>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "host/scene/scene_error.hpp"
 #include "host/scene/scene_reader.hpp"
@@ -13,13 +13,13 @@ namespace mfsd {
 
 namespace {
 
-SelectionSpec read_selection(JsonNode& node, int dim) {
+SelectionSpec read_selection(JsonNode& node, int dim, const std::string& base_dir) {
   SelectionSpec s;
   const int given = int(node.has("region")) + int(node.has("where"));
   if (given > 1) throw SceneError(node.path(), "both \"region\" and \"where\"", "at most one selection");
   if (node.has("region")) {
     s.kind = SelectionSpec::Kind::region;
-    s.region = read_shape(node.object("region"), dim);
+    s.region = read_shape(node.object("region"), dim, base_dir);
   } else if (node.has("where")) {
     s.kind = SelectionSpec::Kind::expression;
     s.expression = node.expression("where", "1");
@@ -42,8 +42,7 @@ void read_components(JsonNode& node, ConditionSpec& c, int dim) {
 void read_window(JsonNode& node, ConditionSpec& c) {
   c.t_start = node.number("t_start", 0.0, Range::non_negative());
   c.t_end = node.number("t_end", 1e300, Range::non_negative());
-  if (!(c.t_end >= c.t_start))
-    throw SceneError(node.key_path("t_end"), std::to_string(c.t_end), "a time >= t_start");
+  if (!(c.t_end >= c.t_start)) throw SceneError(node.key_path("t_end"), std::to_string(c.t_end), "a time >= t_start");
 }
 
 }  // namespace
@@ -60,7 +59,7 @@ void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& 
       throw SceneError(node.key_path("name"), "\"" + c.name + "\"", "a name no other clamp, condition or load has");
     c.body = node.string("body");
     if (!body_names.count(c.body)) throw SceneError(node.key_path("body"), "\"" + c.body + "\"", "the name of a body");
-    c.select = read_selection(node, dim);
+    c.select = read_selection(node, dim, scene.base_dir);
     read_components(node, c, dim);
     read_window(node, c);
   };

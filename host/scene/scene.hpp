@@ -109,6 +109,7 @@ struct OutputSpec {
 
 struct Scene {
   std::string name;
+  std::string base_dir;  // folder of the scene file: relative file names (STL) start here
   std::string description;
   int dimension = 2;
   SolverSpec solver;

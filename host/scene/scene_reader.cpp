@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -32,48 +33,6 @@ void line_column(const std::string& text, size_t byte, size_t& line, size_t& col
     }
   }
 }
-
-Shape read_shape_list(JsonNode& node, const std::string& key, Shape::Kind kind, int dim, size_t min_size) {
-  Shape s;
-  s.kind = kind;
-  auto items = node.array(key, true, min_size);
-  for (size_t k = 0; k < items.size(); ++k) s.children.push_back(read_shape(node.element(key, k, *items[k]), dim));
-  return s;
-}
-
-}  // namespace
-
-// A shape is an object with exactly one of: box {min, max}, union [...], difference [...].
-Shape read_shape(JsonNode node, int dim) {
-  const int kinds = int(node.has("box")) + int(node.has("union")) + int(node.has("difference"));
-  if (kinds != 1)
-    throw SceneError(node.path(), kinds == 0 ? "no shape" : "several shapes",
-                     "exactly one of \"box\", \"union\", \"difference\"");
-  Shape s;
-  if (node.has("box")) {
-    JsonNode box = node.object("box");
-    const auto lo = box.vector("min", size_t(dim), Range::any());
-    const auto hi = box.vector("max", size_t(dim), Range::any());
-    box.finish();
-    Point3 a{0, 0, 0}, b{0, 0, 0};
-    for (int k = 0; k < dim; ++k) {
-      a[k] = lo[k];
-      b[k] = hi[k];
-      if (!(b[k] > a[k]))
-        throw SceneError(box.key_path("max") + "/" + std::to_string(k), std::to_string(b[k]),
-                         "a value greater than min (" + std::to_string(a[k]) + ")");
-    }
-    s = Shape::box(a, b);
-  } else if (node.has("union")) {
-    s = read_shape_list(node, "union", Shape::Kind::union_of, dim, 1);
-  } else {
-    s = read_shape_list(node, "difference", Shape::Kind::difference, dim, 2);
-  }
-  node.finish();
-  return s;
-}
-
-namespace {
 
 MaterialSpec read_material(JsonNode m) {
   MaterialSpec spec;
@@ -193,8 +152,9 @@ void apply_override(Json& doc, const std::string& assignment) {
   }
 }
 
-Scene read_scene(const Json& doc, Json& resolved) {
+Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
   Scene scene;
+  scene.base_dir = base_dir;
   resolved = Json::object();
   // Constants first (in file order): numbers or expressions of earlier constants.
   std::map<std::string, double> constants;
@@ -246,7 +206,7 @@ Scene read_scene(const Json& doc, Json& resolved) {
     if (!names.insert(body.name).second)
       throw SceneError(node.key_path("name"), "\"" + body.name + "\"", "a name no other body has");
     body.spacing = node.number("spacing", Range::positive());
-    body.geometry = read_shape(node.object("geometry"), dim);
+    body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"));
     JsonNode v = node.object_or_empty("initial_velocity");
     const char* axes[3] = {"x", "y", "z"};
@@ -268,7 +228,7 @@ Scene read_scene(const Json& doc, Json& resolved) {
     clamp.body = node.string("body");
     if (!names.count(clamp.body))
       throw SceneError(node.key_path("body"), "\"" + clamp.body + "\"", "the name of a body");
-    clamp.region = read_shape(node.object("region"), dim);
+    clamp.region = read_shape(node.object("region"), dim, scene.base_dir);
     node.finish();
     scene.clamps.push_back(clamp);
   }
@@ -341,13 +301,13 @@ Scene read_scene(const Json& doc, Json& resolved) {
 }
 
 SceneDocument load_scene_text(const std::string& text, const std::string& source_name,
-                              const std::vector<std::string>& overrides) {
+                              const std::vector<std::string>& overrides, const std::string& base_dir) {
   SceneDocument d;
   d.source_name = source_name;
   d.source = parse_scene_json(text, source_name);
   if (!d.source.is_object()) throw SceneError(source_name, json_type_name(d.source), "a JSON object at the top level");
   for (auto& o : overrides) apply_override(d.source, o);
-  d.scene = read_scene(d.source, d.resolved);
+  d.scene = read_scene(d.source, d.resolved, base_dir);
   return d;
 }
 
@@ -356,7 +316,7 @@ SceneDocument load_scene_file(const std::string& path, const std::vector<std::st
   if (!in) throw SceneError(path, "", "a readable scene file (it cannot be opened)");
   std::stringstream ss;
   ss << in.rdbuf();
-  return load_scene_text(ss.str(), path, overrides);
+  return load_scene_text(ss.str(), path, overrides, std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace mfsd

@@ -27,8 +27,9 @@ Json parse_scene_json(const std::string& text, const std::string& source_name);
 // parsed as JSON, else taken as a string.
 void apply_override(Json& doc, const std::string& assignment);
 
-// A shape object (box, union, difference) of the given dimension.
-Shape read_shape(JsonNode node, int dim);
+// A shape object of the given dimension (shape_reader.cpp); file names
+// (STL) are relative to `base_dir`, the scene file's folder.
+Shape read_shape(JsonNode node, int dim, const std::string& base_dir);
 
 // velocity_conditions[] and loads[] into scene.conditions (condition_reader.cpp).
 void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
@@ -37,11 +38,12 @@ void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& 
 void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 
 // Validates the document into a Scene; fills `resolved`.
-Scene read_scene(const Json& doc, Json& resolved);
+Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir = "");
 
 SceneDocument load_scene_file(const std::string& path, const std::vector<std::string>& overrides);
+// `base_dir`: the folder relative file names in the scene refer to.
 SceneDocument load_scene_text(const std::string& text, const std::string& source_name,
-                              const std::vector<std::string>& overrides);
+                              const std::vector<std::string>& overrides, const std::string& base_dir = "");
 
 // The scene `mfsd run` uses without a file (configs/oscillating_plate_2d.json, H/dp = 10).
 const std::string& default_scene_text();

@@ -54,8 +54,8 @@ class TlsphConditions {
         ComponentValue<Real>& cv = cond->component[a];
         cv = ComponentValue<Real>{ComponentValue<Real>::none, Real(0), {nullptr, 0, nullptr, 0}};
         if (spec.value[size_t(a)].empty()) continue;
-        cond->program[a] = compile_particle_expression(spec.value[size_t(a)], scene, cond->body,
-                                                       condition_path(c) + "/" + axis[a]);
+        cond->program[a] =
+            compile_particle_expression(spec.value[size_t(a)], scene, cond->body, condition_path(c) + "/" + axis[a]);
         const expr::Program& p = cond->program[a];
         if (p.is_constant()) {
           cv.kind = ComponentValue<Real>::constant;
@@ -66,8 +66,8 @@ class TlsphConditions {
         from_host<B>(p.code(), cond->code[a]);
         from_host<B>(std::vector<Real>(view.consts, view.consts + view.n_consts), cond->consts[a]);
         cv.kind = ComponentValue<Real>::program;
-        cv.code = expr::ProgramView<Real>{raw(cond->code[a]), int(p.code().size()), raw(cond->consts[a]),
-                                          view.n_consts};
+        cv.code =
+            expr::ProgramView<Real>{raw(cond->code[a]), int(p.code().size()), raw(cond->consts[a]), view.n_consts};
       }
       conditions_.push_back(std::move(cond));
     }
@@ -188,17 +188,17 @@ class TlsphConditions {
                                         v.volume,
                                         v.acceleration,
                                         v.velocity};
-    const ConditionSums s =
-        transform_reduce<B>(0, Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{});
+    const ConditionSums s = transform_reduce<B>(0, Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{});
     if (dt == 0.0) finish(c, s, v, te, 0);
     return s;
   }
 
   void clamp(Clamp& k, const TlsphViews<D, Real>& v, double dt) {
-    ClampReactionFunctor<D, Real> f{raw(k.particles), Real(scene_->bodies[k.body].material.density), Real(dt),
-                                    v.volume, v.displacement, v.velocity};
-    const ConditionSums s = transform_reduce<B>(0, Index(k.particles.size()), f, ConditionSums::zero(),
-                                                ConditionSumsCombine{});
+    ClampReactionFunctor<D, Real> f{raw(k.particles), Real(scene_->bodies[k.body].material.density),
+                                    Real(dt),         v.volume,
+                                    v.displacement,   v.velocity};
+    const ConditionSums s =
+        transform_reduce<B>(0, Index(k.particles.size()), f, ConditionSums::zero(), ConditionSumsCombine{});
     for (int a = 0; a < 3; ++a) k.force[a] = s.force[a];
   }
 
@@ -215,10 +215,10 @@ class TlsphConditions {
     for (int a = 0; a < D; ++a) where += (a ? ", " : "") + std::to_string(double(X.v[a]));
     where += ")";
     const bool load = c.spec->type != ConditionSpec::Type::velocity;
-    throw NumericalFailure(step, te, long(copy_element<B>(id_, i)), c.spec->body,
-                           std::string(load ? "load '" : "velocity condition '") + c.spec->name + "' component " +
-                               axis[s.error.component],
-                           p.describe_error(expr::Status(s.error.status), s.error.pc) + " at " + where);
+    throw NumericalFailure(
+        step, te, long(copy_element<B>(id_, i)), c.spec->body,
+        std::string(load ? "load '" : "velocity condition '") + c.spec->name + "' component " + axis[s.error.component],
+        p.describe_error(expr::Status(s.error.status), s.error.pc) + " at " + where);
   }
 
   const Scene* scene_ = nullptr;

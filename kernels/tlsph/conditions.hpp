@@ -75,8 +75,8 @@ struct ConditionError {
 };
 
 struct ConditionSums {
-  double power;       // W (per unit thickness in 2-D)
-  double force[3];    // N: sum of applied forces (loads) or reactions (velocity)
+  double power;          // W (per unit thickness in 2-D)
+  double force[3];       // N: sum of applied forces (loads) or reactions (velocity)
   ConditionError error;  // the lowest-indexed particle with an error
   static constexpr Index kNoError = Index(0x7fffffff);
 
@@ -96,8 +96,8 @@ struct ConditionSumsCombine {
 // Evaluates the given components of particle i; returns false (and fills
 // `error`) at the first run-time error. mask bit a: component a was set.
 template <int D, class Real>
-MFSD_HD inline bool evaluate_components(const ComponentValue<Real> (&c)[3], const Real* vars, Index i,
-                                        Real (&value)[3], int& mask, ConditionError& error) {
+MFSD_HD inline bool evaluate_components(const ComponentValue<Real> (&c)[3], const Real* vars, Index i, Real (&value)[3],
+                                        int& mask, ConditionError& error) {
   mask = 0;
   for (int a = 0; a < D; ++a) {
     if (c[a].kind == ComponentValue<Real>::none) continue;

@@ -22,11 +22,6 @@ namespace {
 constexpr double kMass = 1000 * 0.1 * 0.05;
 constexpr double kVx0 = 0.3;
 
-std::vector<std::string> with(std::vector<std::string> sets, const std::string& extra) {
-  sets.push_back(extra);
-  return sets;
-}
-
 const BoundaryForceSample& force_of(const std::vector<BoundaryForceSample>& f, const std::string& name) {
   for (auto& s : f)
     if (s.name == name) return s;
@@ -64,8 +59,8 @@ TEST(Loads, TractionActsOnTheSurfaceLayerOnly) {
   // the two of the inner layer on the top and bottom faces (55 N).
   const std::string load =
       R"J(loads=[{"name": "face", "body": "block", "type": "traction", "where": "x0 > 0.095", "x": 1000)J";
-  for (const auto& [face, total] : {std::pair<std::string, double>{R"J(, "face": "+x"}])J", 50.0},
-                                    std::pair<std::string, double>{"}]", 55.0}}) {
+  for (const auto& [face, total] :
+       {std::pair<std::string, double>{R"J(, "face": "+x"}])J", 50.0}, std::pair<std::string, double>{"}]", 55.0}}) {
     auto t = run_config("scenes/free_block_2d.json", {load + face}, Precision::double_precision, 0, 0);
     EXPECT_NEAR(force_of(t.solver->boundary_forces(), "face").force[0], total, 1e-9) << face;
     EXPECT_NEAR(t.solver->energies().momentum[0], kMass * kVx0 + total * t.time.back(), 1e-9) << face;
@@ -73,8 +68,8 @@ TEST(Loads, TractionActsOnTheSurfaceLayerOnly) {
 }
 
 TEST(Loads, AccelerationActsLikeGravity) {
-  auto a = run_config("scenes/free_block_2d.json",
-                      {R"J(loads=[{"body": "block", "type": "acceleration", "y": -9.81}])J"});
+  auto a =
+      run_config("scenes/free_block_2d.json", {R"J(loads=[{"body": "block", "type": "acceleration", "y": -9.81}])J"});
   auto g = run_config("scenes/free_block_2d.json", {"solver.gravity=[0,-9.81]"});
   ASSERT_EQ(a.time.size(), g.time.size());
   const ProbeSample &pa = a.probes.back()[0], &pg = g.probes.back()[0];
@@ -116,7 +111,8 @@ TEST(VelocityConditions, PrescribeVelocityAndReportTheReaction) {
   const EnergySample e = t.solver->energies();
   const double w = e.bodies[0].boundary_work;
   EXPECT_GT(std::abs(w), 1e-4);
-  EXPECT_LT(std::abs(e.bodies[0].balance() - t.energies.front().bodies[0].balance()), 5e-4 * std::abs(w));  // measured 5e-5
+  EXPECT_LT(std::abs(e.bodies[0].balance() - t.energies.front().bodies[0].balance()),
+            5e-4 * std::abs(w));  // measured 5e-5
   EXPECT_NE(force_of(t.solver->boundary_forces(), "drive").force[0], 0.0);
 }
 

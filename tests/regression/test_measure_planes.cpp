@@ -13,10 +13,10 @@ TEST(MeasurePlanes, RigidAccelerationGivesMassTimesAcceleration) {
   // A free block under a uniform acceleration load moves rigidly (no
   // stress): the right-face layer (20 particles of 1000 * dp^2 = 6.25 g)
   // carries f = m a, and its mean displacement is v0 t + a t^2 / 2.
-  const SceneDocument doc = test::load_config(
-      "scenes/free_block_2d.json",
-      {R"J(loads=[{"body": "block", "type": "acceleration", "x": 2, "y": -5}])J",
-       R"J(measure_planes=[{"name": "right", "points": [[0.09875, 0], [0.09875, 0.05]]}])J"});
+  const SceneDocument doc =
+      test::load_config("scenes/free_block_2d.json",
+                        {R"J(loads=[{"body": "block", "type": "acceleration", "x": 2, "y": -5}])J",
+                         R"J(measure_planes=[{"name": "right", "points": [[0.09875, 0], [0.09875, 0.05]]}])J"});
   const InitialParticles particles = generate_particles(doc.scene);
   ASSERT_EQ(particles.measure_particles.size(), 1u);
   EXPECT_EQ(particles.measure_particles[0].size(), 20u);
@@ -35,8 +35,8 @@ TEST(MeasurePlanes, QuadrilateralSelectsTheFaceLayer3d) {
   // The top face z = 0.04 of the 3-D block (20 x 10 particles at dp = 5 mm);
   // a quadrilateral over half of it holds half of them.
   auto count = [](const std::string& points) {
-    const SceneDocument doc = test::load_config(
-        "scenes/free_block_3d.json", {R"J(measure_planes=[{"name": "top", "points": )J" + points + "}]"});
+    const SceneDocument doc = test::load_config("scenes/free_block_3d.json",
+                                                {R"J(measure_planes=[{"name": "top", "points": )J" + points + "}]"});
     return generate_particles(doc.scene).measure_particles.at(0).size();
   };
   EXPECT_EQ(count("[[0, 0, 0.0375], [0.1, 0, 0.0375], [0.1, 0.05, 0.0375], [0, 0.05, 0.0375]]"), 200u);
@@ -54,8 +54,7 @@ TEST(MeasurePlanes, BadPlanesAreErrors) {
       EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
     }
   };
-  expect_error("scenes/free_block_2d.json", R"J([{"name": "far", "points": [[1, 0], [1, 1]]}])J",
-               "/measure_planes/0");
+  expect_error("scenes/free_block_2d.json", R"J([{"name": "far", "points": [[1, 0], [1, 1]]}])J", "/measure_planes/0");
   expect_error("scenes/free_block_2d.json", R"J([{"name": "p", "points": [[0, 0]]}])J", "/measure_planes/0/points");
   expect_error("scenes/free_block_3d.json",
                R"J([{"name": "bent", "points": [[0, 0, 0], [0.1, 0, 0], [0.1, 0.05, 0.01], [0, 0.05, 0]]}])J",
