@@ -16,12 +16,13 @@ namespace mfsd {
 namespace {
 
 const std::vector<std::string> kShapes2d = {"box", "circle", "polygon", "transform", "union", "difference"};
-const std::vector<std::string> kShapes3d = {"box",  "sphere",    "cylinder", "extrude",
-                                            "stl",  "transform", "union",    "difference"};
+const std::vector<std::string> kShapes3d = {"box", "sphere",    "cylinder", "extrude",
+                                            "stl", "transform", "union",    "difference"};
 
 std::string list(const std::vector<std::string>& names) {
   std::string s;
-  for (size_t k = 0; k < names.size(); ++k) s += (k ? (k + 1 == names.size() ? " or " : ", ") : "") + ('"' + names[k] + '"');
+  for (size_t k = 0; k < names.size(); ++k)
+    s += (k ? (k + 1 == names.size() ? " or " : ", ") : "") + ('"' + names[k] + '"');
   return s;
 }
 
@@ -124,7 +125,8 @@ Shape read_shape(JsonNode node, int dim, const std::string& base_dir) {
     double area = 0;
     for (size_t i = 0, j = s.vertices.size() - 1; i < s.vertices.size(); j = i++)
       area += s.vertices[j][0] * s.vertices[i][1] - s.vertices[i][0] * s.vertices[j][1];
-    if (area == 0) throw SceneError(n.key_path("points"), "a polygon of zero area", "at least 3 points enclosing an area");
+    if (area == 0)
+      throw SceneError(n.key_path("points"), "a polygon of zero area", "at least 3 points enclosing an area");
     n.finish();
   } else if (key == "extrude") {
     JsonNode n = node.object(key);
@@ -133,7 +135,8 @@ Shape read_shape(JsonNode node, int dim, const std::string& base_dir) {
     const auto z = n.vector("z", 2, Range::any());
     s.z_min = z[0];
     s.z_max = z[1];
-    if (!(s.z_max > s.z_min)) throw SceneError(n.key_path("z") + "/1", std::to_string(s.z_max), "a value greater than z[0]");
+    if (!(s.z_max > s.z_min))
+      throw SceneError(n.key_path("z") + "/1", std::to_string(s.z_max), "a value greater than z[0]");
     n.finish();
   } else if (key == "stl") {
     JsonNode n = node.object(key);

@@ -81,7 +81,8 @@ std::shared_ptr<const TriangleMesh> TriangleMesh::load(const std::string& path, 
   else if (bytes.compare(0, 5, "solid") == 0)
     t = read_ascii(bytes, path);
   else
-    throw std::runtime_error("STL file '" + path + "' is neither ASCII (starting with 'solid') nor binary (84 + 50 n bytes)");
+    throw std::runtime_error("STL file '" + path +
+                             "' is neither ASCII (starting with 'solid') nor binary (84 + 50 n bytes)");
   for (auto& tri : t)
     for (auto& p : tri)
       for (auto& x : p) x *= scale;
@@ -137,8 +138,10 @@ void TriangleMesh::build() {
   };
   for (unsigned k = 0; k < triangles_.size(); ++k) {
     const auto& t = triangles_[k];
-    const int x0 = index(std::min({t[0][0], t[1][0], t[2][0]}), 0), x1 = index(std::max({t[0][0], t[1][0], t[2][0]}), 0);
-    const int y0 = index(std::min({t[0][1], t[1][1], t[2][1]}), 1), y1 = index(std::max({t[0][1], t[1][1], t[2][1]}), 1);
+    const int x0 = index(std::min({t[0][0], t[1][0], t[2][0]}), 0),
+              x1 = index(std::max({t[0][0], t[1][0], t[2][0]}), 0);
+    const int y0 = index(std::min({t[0][1], t[1][1], t[2][1]}), 1),
+              y1 = index(std::max({t[0][1], t[1][1], t[2][1]}), 1);
     for (int j = y0; j <= y1; ++j)
       for (int i = x0; i <= x1; ++i) buckets_[size_t(j) * size_t(grid_) + size_t(i)].push_back(k);
   }

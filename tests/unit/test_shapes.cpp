@@ -21,10 +21,11 @@ namespace {
 
 // Particles of a one-body scene with the given geometry (JSON) and spacing.
 long count(int dim, const std::string& geometry, double dp, const std::string& base_dir = "") {
-  const std::string text = R"({"name": "s", "dimension": )" + std::to_string(dim) +
-                           R"(, "solver": {"end_time": 1}, "bodies": [{"name": "b", "spacing": )" +
-                           std::to_string(dp) + R"(, "geometry": )" + geometry +
-                           R"(, "material": {"model": "neo_hookean", "density": 1, "youngs_modulus": 1, "poisson_ratio": 0.3}}]})";
+  const std::string text =
+      R"({"name": "s", "dimension": )" + std::to_string(dim) +
+      R"(, "solver": {"end_time": 1}, "bodies": [{"name": "b", "spacing": )" + std::to_string(dp) +
+      R"(, "geometry": )" + geometry +
+      R"(, "material": {"model": "neo_hookean", "density": 1, "youngs_modulus": 1, "poisson_ratio": 0.3}}]})";
   return long(generate_particles(load_scene_text(text, "test", {}, base_dir).scene).size());
 }
 
@@ -113,8 +114,9 @@ void write_binary(const fs::path& f, const std::vector<Tri>& t) {
 class StlFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mfsd_stl_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ =
+        fs::temp_directory_path() / ("mfsd_stl_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                     "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -140,8 +142,9 @@ TEST(Shapes, CircleAnnulusAndPolygon2d) {
 
 TEST(Shapes, SphereCylinderAndExtrusion3d) {
   const double dp = 0.1;
-  EXPECT_EQ(count(3, R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", dp),
-            lattice_count(3, -1, 1, dp, [](double x, double y, double z) { return x * x + y * y + z * z <= 1 + 1e-12; }));
+  EXPECT_EQ(
+      count(3, R"({"sphere": {"center": [0, 0, 0], "radius": 1}})", dp),
+      lattice_count(3, -1, 1, dp, [](double x, double y, double z) { return x * x + y * y + z * z <= 1 + 1e-12; }));
   // A tube along z from z = -1 to 1 equals the extruded annulus.
   const long tube =
       count(3, R"({"cylinder": {"base": [0, 0, -1], "axis": [0, 0, 2], "radius": 1, "inner_radius": 0.5}})", dp);
@@ -239,6 +242,5 @@ TEST_F(StlFiles, MeshWithAHoleIsAClearError) {
   const std::string missing = scene_error(3, R"({"stl": {"file": "none.stl"}})", dir_.string());
   EXPECT_NE(missing.find("cannot be opened"), std::string::npos) << missing;
   std::ofstream(dir_ / "junk.stl") << "not an stl file";
-  EXPECT_NE(scene_error(3, R"({"stl": {"file": "junk.stl"}})", dir_.string()).find("neither ASCII"),
-            std::string::npos);
+  EXPECT_NE(scene_error(3, R"({"stl": {"file": "junk.stl"}})", dir_.string()).find("neither ASCII"), std::string::npos);
 }
