@@ -24,6 +24,9 @@ TEST(Configs, EveryShippedSceneIsValid) {
     ++n;
   }
   EXPECT_GE(n, 7);
+  // The tutorial's finished scene (docs/tutorial.md).
+  EXPECT_NO_THROW(
+      generate_particles(load_scene_file(std::string(MFSD_SOURCE_DIR) + "/docs/tutorial/beam.json", {}).scene));
 }
 
 TEST(CantileverBeam2d, FirstSwingAtDx1mm) {
@@ -37,7 +40,8 @@ TEST(CantileverBeam2d, FirstSwingAtDx1mm) {
   for (size_t k = 1; k < t.time.size(); ++k) {
     const double u = t.probes[k][0].displacement[1], u_prev = t.probes[k - 1][0].displacement[1];
     if (u > umax) umax = u, tmax = t.time[k];
-    if (t_half == 0 && tmax > 0 && u_prev > 0 && u <= 0) t_half = t.time[k - 1] + (t.time[k] - t.time[k - 1]) * u_prev / (u_prev - u);
+    if (t_half == 0 && tmax > 0 && u_prev > 0 && u <= 0)
+      t_half = t.time[k - 1] + (t.time[k] - t.time[k - 1]) * u_prev / (u_prev - u);
   }
   EXPECT_NEAR(umax, 0.023335, 0.0001);
   EXPECT_NEAR(2 * t_half, 0.2610, 0.003);
