@@ -18,6 +18,7 @@
 #include "host/output/pvd_index.hpp"
 #include "host/output/vtu_writer.hpp"
 #include "host/scene/particle_generator.hpp"
+#include "host/scene/rigid_body.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/solver/numerical_failure.hpp"
 
@@ -30,10 +31,36 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// The rigid bodies' surface markers at time t as a snapshot (body = the
+// rigid body's index, constrained = 1), with their rigid-motion velocity.
+Snapshot rigid_body_snapshot(const Scene& scene, const std::vector<RigidBodyMotion>& motion,
+                             const std::vector<std::vector<Point3>>& markers, double t) {
+  Snapshot s;
+  const double eps = 1e-7 * std::max(scene.solver.end_time, 1e-300);
+  for (size_t k = 0; k < motion.size(); ++k)
+    for (const Point3& X : markers[k]) {
+      const Point3 x = motion[k].position(X, t), x0 = motion[k].position(X, 0.0);
+      const Point3 xp = motion[k].position(X, t + eps), xm = motion[k].position(X, std::max(0.0, t - eps));
+      const double span = t + eps - std::max(0.0, t - eps);
+      s.id.push_back(long(s.n++));
+      s.body.push_back(int(k));
+      s.constrained.push_back(1);
+      for (int a = 0; a < 3; ++a) {
+        s.position.push_back(x[a]);
+        s.displacement.push_back(x[a] - x0[a]);
+        s.velocity.push_back((xp[a] - xm[a]) / span);
+      }
+      s.von_mises.push_back(0);
+      s.jacobian.push_back(1);
+      s.hourglass.push_back(0);
+    }
+  return s;
+}
+
 // Outputs of a previous run in the same folder would mix with this one's.
 void remove_previous_outputs(const std::string& dir) {
-  for (const char* f :
-       {"run.json", "timing.json", "probes.csv", "energies.csv", "boundary_forces.csv", "snapshots.pvd"})
+  for (const char* f : {"run.json", "timing.json", "probes.csv", "energies.csv", "boundary_forces.csv", "snapshots.pvd",
+                        "rigid_bodies.pvd"})
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
   for (auto& e : fs::directory_iterator(dir))
@@ -91,6 +118,10 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   if (!scene.clamps.empty() || !scene.conditions.empty())
     forces_csv = std::make_unique<CsvWriter>(dir + "/boundary_forces.csv", boundary_force_columns(scene));
   PvdIndex pvd(dir + "/snapshots.pvd");
+  std::vector<RigidBodyMotion> rigid;
+  for (size_t k = 0; k < scene.rigid_bodies.size(); ++k)
+    rigid.emplace_back(scene.rigid_bodies[k], scene.constants, "/rigid_bodies/" + std::to_string(k));
+  PvdIndex rigid_pvd(dir + "/rigid_bodies.pvd");
   const bool single = options.solver.precision == Precision::single_precision;
   int snapshot_count = 0;
   double output_seconds = 0;
@@ -112,6 +143,12 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
         std::snprintf(name, sizeof name, "snapshots/%s_%05d.vtu", scene.name.c_str(), snapshot_count);
         write_vtu(dir + "/" + name, solver->snapshot(), single);
         pvd.add(solver->time(), name);
+        if (!rigid.empty()) {
+          std::snprintf(name, sizeof name, "snapshots/%s_rigid_%05d.vtu", scene.name.c_str(), snapshot_count);
+          write_vtu(dir + "/" + name, rigid_body_snapshot(scene, rigid, particles.rigid_markers, solver->time()),
+                    single);
+          rigid_pvd.add(solver->time(), name);
+        }
       }
       ++snapshot_count;
     }

@@ -13,10 +13,22 @@ namespace mfsd {
 
 namespace {
 
-SelectionSpec read_selection(JsonNode& node, int dim, const std::string& base_dir) {
+SelectionSpec read_selection(JsonNode& node, const Scene& scene) {
+  const int dim = scene.dimension;
+  const std::string& base_dir = scene.base_dir;
   SelectionSpec s;
-  const int given = int(node.has("region")) + int(node.has("where"));
-  if (given > 1) throw SceneError(node.path(), "both \"region\" and \"where\"", "at most one selection");
+  const int given = int(node.has("region")) + int(node.has("where")) + int(node.has("near"));
+  if (given > 1) throw SceneError(node.path(), "several selections", "at most one of \"region\", \"where\", \"near\"");
+  if (node.has("near")) {
+    JsonNode n = node.object("near");
+    s.kind = SelectionSpec::Kind::near;
+    s.rigid_body = n.string("rigid_body");
+    bool known = false;
+    for (auto& r : scene.rigid_bodies) known = known || r.name == s.rigid_body;
+    if (!known) throw SceneError(n.key_path("rigid_body"), "\"" + s.rigid_body + "\"", "the name of a rigid body");
+    s.distance = n.number("distance", Range::non_negative());
+    n.finish();
+  }
   if (node.has("region")) {
     s.kind = SelectionSpec::Kind::region;
     s.region = read_shape(node.object("region"), dim, base_dir);
@@ -59,7 +71,7 @@ void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& 
       throw SceneError(node.key_path("name"), "\"" + c.name + "\"", "a name no other clamp, condition or load has");
     c.body = node.string("body");
     if (!body_names.count(c.body)) throw SceneError(node.key_path("body"), "\"" + c.body + "\"", "the name of a body");
-    c.select = read_selection(node, dim, scene.base_dir);
+    c.select = read_selection(node, scene);
     read_components(node, c, dim);
     read_window(node, c);
   };

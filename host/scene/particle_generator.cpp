@@ -10,6 +10,7 @@
 #include "host/expr/program.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/scene/particle_expressions.hpp"
+#include "host/scene/rigid_body.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/scene/surface.hpp"
 #include "kernels/expr/interpreter.hpp"
@@ -86,6 +87,15 @@ std::vector<long> select_particles(const Scene& scene, size_t b, const Selection
     const double tol = 1e-9 * scene.bodies[b].spacing;
     for (long i = r.begin; i < r.end; ++i)
       if (sel.region.contains(P.position[size_t(i)], dim, tol)) ids.push_back(i);
+  } else if (sel.kind == SelectionSpec::Kind::near) {
+    // Within `distance` of the rigid body at t = 0 (the shape widened by it).
+    const RigidBodySpec* rb = nullptr;
+    for (auto& r : scene.rigid_bodies)
+      if (r.name == sel.rigid_body) rb = &r;
+    const RigidBodyMotion motion(*rb, scene.constants, path + "/near");
+    const double tol = sel.distance + 1e-9 * scene.bodies[b].spacing;
+    for (long i = r.begin; i < r.end; ++i)
+      if (rb->shape.contains(motion.reference(P.position[size_t(i)], 0.0), dim, tol)) ids.push_back(i);
   } else {
     std::map<std::string, double> constants;
     for (auto& kv : body_expression_constants(scene, b)) constants[kv.first] = kv.second;
@@ -291,6 +301,15 @@ InitialParticles generate_particles(const Scene& scene) {
       if (!cond.value[size_t(a)].empty())
         compile_particle_expression(cond.value[size_t(a)], scene, b, path + "/" + axis_name[a]);
     P.condition_particles.push_back(std::move(sel));
+  }
+
+  for (size_t k = 0; k < scene.rigid_bodies.size(); ++k) {
+    const RigidBodySpec& rb = scene.rigid_bodies[k];
+    RigidBodyMotion(rb, scene.constants, "/rigid_bodies/" + std::to_string(k));  // checks the expressions
+    P.rigid_markers.push_back(rigid_body_markers(rb.shape, dim, rb.marker_spacing));
+    if (P.rigid_markers.back().empty())
+      throw SceneError("/rigid_bodies/" + std::to_string(k) + "/shape", rb.shape.describe(),
+                       "a shape that holds at least one marker point at spacing " + std::to_string(rb.marker_spacing));
   }
 
   for (size_t k = 0; k < scene.measure_planes.size(); ++k)

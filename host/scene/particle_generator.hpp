@@ -33,6 +33,7 @@ struct InitialParticles {
   };
   std::vector<Selected> condition_particles;
   std::vector<std::vector<long>> measure_particles;  // ids each measure plane holds
+  std::vector<std::vector<Point3>> rigid_markers;    // per rigid body: surface markers (its shape as given)
   std::vector<unsigned char> surface;                // faces a particle exposes, 0 inside (surface.hpp)
   std::vector<Point3> displacement;                  // initial displacement; empty when no body sets one
 

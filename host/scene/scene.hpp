@@ -40,14 +40,28 @@ struct ClampSpec {
   Shape region;
 };
 
+// A kinematic rigid body (host/scene/rigid_body.hpp): a shape moved by
+// x(t) = center + R(angle(t)) (X - center) + translation(t).
+struct RigidBodySpec {
+  std::string name;
+  Shape shape;
+  std::array<std::string, 3> translation{"0", "0", "0"};  // expressions of t
+  std::string angle_degrees = "0";                        // expression of t
+  Point3 axis{0, 0, 1};
+  Point3 center{0, 0, 0};
+  double marker_spacing = 0;  // of its surface markers in rigid_bodies.pvd
+};
+
 // Which particles of a body a condition or load acts on: the whole body, the
-// particles inside a region, or those where an expression of x0 y0 z0 (and
-// the constants) is non-zero.
+// particles inside a region, those where an expression of x0 y0 z0 (and the
+// constants) is non-zero, or those within a distance of a rigid body at t = 0.
 struct SelectionSpec {
-  enum class Kind { body, region, expression };
+  enum class Kind { body, region, expression, near };
   Kind kind = Kind::body;
   Shape region;
   std::string expression;
+  std::string rigid_body;  // near
+  double distance = 0;     // near
 };
 
 // A prescribed velocity (seed 001 "bcvel") or a load ("bcforce"): one
@@ -115,6 +129,7 @@ struct Scene {
   SolverSpec solver;
   std::vector<BodySpec> bodies;
   std::vector<ClampSpec> clamps;
+  std::vector<RigidBodySpec> rigid_bodies;
   std::vector<ConditionSpec> conditions;  // velocity_conditions, then loads
   std::vector<ProbeSpec> probes;
   std::vector<MeasurePlaneSpec> measure_planes;

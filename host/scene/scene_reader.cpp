@@ -233,6 +233,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     scene.clamps.push_back(clamp);
   }
 
+  read_rigid_bodies(root, scene);
   read_conditions(root, scene, names);
   read_measure_planes(root, scene, names);
 

@@ -34,6 +34,9 @@ Shape read_shape(JsonNode node, int dim, const std::string& base_dir);
 // velocity_conditions[] and loads[] into scene.conditions (condition_reader.cpp).
 void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 
+// rigid_bodies[] into scene.rigid_bodies (rigid_body_reader.cpp); after the bodies.
+void read_rigid_bodies(JsonNode& root, Scene& scene);
+
 // measure_planes[] into scene.measure_planes (measure_plane_reader.cpp).
 void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 
