@@ -10,8 +10,7 @@
 namespace mfsd {
 
 RigidBodyMotion::RigidBodyMotion(const RigidBodySpec& spec,
-                                 const std::vector<std::pair<std::string, double>>& constants,
-                                 const std::string& path)
+                                 const std::vector<std::pair<std::string, double>>& constants, const std::string& path)
     : spec_(spec) {
   std::map<std::string, double> c(constants.begin(), constants.end());
   const expr::VariableTable vars{{"t"}};
@@ -23,7 +22,8 @@ RigidBodyMotion::RigidBodyMotion(const RigidBodySpec& spec,
       throw SceneError(where + ": " + e.what());
     }
   };
-  for (int a = 0; a < 3; ++a) translation_[size_t(a)] = compile(spec.translation[size_t(a)], path + "/translation/" + axes[a]);
+  for (int a = 0; a < 3; ++a)
+    translation_[size_t(a)] = compile(spec.translation[size_t(a)], path + "/translation/" + axes[a]);
   angle_ = compile(spec.angle_degrees, path + "/rotation/angle_degrees");
 }
 

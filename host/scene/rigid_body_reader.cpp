@@ -31,10 +31,11 @@ void read_rigid_bodies(JsonNode& root, Scene& scene) {
     if (dim == 3) {
       const auto v = rot.vector("axis", 3, {0.0, 0.0, 1.0}, Range::any());
       r.axis = {v[0], v[1], v[2]};
-      if (v[0] == 0 && v[1] == 0 && v[2] == 0) throw SceneError(rot.key_path("axis"), "a zero vector", "the rotation axis");
+      if (v[0] == 0 && v[1] == 0 && v[2] == 0)
+        throw SceneError(rot.key_path("axis"), "a zero vector", "the rotation axis");
     }
-    const auto c = rot.vector("center", size_t(dim), std::vector<double>(r.center.begin(), r.center.begin() + dim),
-                              Range::any());
+    const auto c =
+        rot.vector("center", size_t(dim), std::vector<double>(r.center.begin(), r.center.begin() + dim), Range::any());
     for (int a = 0; a < dim; ++a) r.center[a] = c[size_t(a)];
     rot.finish();
     double smallest = 1e300;

@@ -68,3 +68,13 @@ TEST(CrossBackend, BendingColumnFloat) {
   MFSD_REQUIRE_CUDA_DEVICE();
   compare("bending_column_3d.json", {"constants.H_over_dp=4"}, Precision::single_precision, 1e-3);
 }
+
+TEST(CrossBackend, ConditionsAndLoadsDouble) {
+  // Velocity conditions and loads evaluate their expressions with the device
+  // interpreter: the seed 001 cantilever (whole-body conditions) and the
+  // large-deformation beam (a ramped traction), coarse.
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("cantilever_beam_2d.json", {"constants.dp=0.002"}, Precision::double_precision, 1e-9);
+  compare("cantilever_large_deformation_3d.json", {"constants.dp=0.002", "constants.Tmax=0.0005"},
+          Precision::double_precision, 1e-9);
+}

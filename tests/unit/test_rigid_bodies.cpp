@@ -42,9 +42,9 @@ TEST(RigidBodies, MotionAndItsInverse) {
   EXPECT_NEAR(X[0], 1, 1e-14);
   EXPECT_NEAR(X[1], 0.5, 1e-14);
   EXPECT_NEAR(X[2], 0.5, 1e-14);
-  EXPECT_THROW(RigidBodyMotion(RigidBodySpec{"bad", r.shape, {"x0", "0", "0"}, "0", {0, 0, 1}, {}, 0}, {},
-                               "/rigid_bodies/0"),
-               SceneError);  // only t is a variable
+  EXPECT_THROW(
+      RigidBodyMotion(RigidBodySpec{"bad", r.shape, {"x0", "0", "0"}, "0", {0, 0, 1}, {}, 0}, {}, "/rigid_bodies/0"),
+      SceneError);  // only t is a variable
 }
 
 TEST(RigidBodies, NearSelectsTheParticlesWithinTheDistance) {
@@ -55,8 +55,7 @@ TEST(RigidBodies, NearSelectsTheParticlesWithinTheDistance) {
       "near": {"rigid_body": "pin", "distance": "dp"}, "x": -1}])");
   const InitialParticles P = generate_particles(doc.scene);
   long expected = 0;
-  for (const Point3& x : P.position)
-    expected += std::hypot(x[0] - 0.11, x[1] - 0.025) <= 0.01 + 0.0025 + 1e-12;
+  for (const Point3& x : P.position) expected += std::hypot(x[0] - 0.11, x[1] - 0.025) <= 0.01 + 0.0025 + 1e-12;
   EXPECT_GT(expected, 0);
   EXPECT_EQ(long(P.condition_particles.at(0).ids.size()), expected);
   ASSERT_EQ(P.rigid_markers.size(), 1u);
@@ -74,9 +73,10 @@ TEST(RigidBodies, Errors) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error(R"(, "loads": [{"body": "block", "type": "point", "near": {"rigid_body": "x", "distance": 0}, "x": 1}])")
-                .find("/loads/0/near/rigid_body"),
-            std::string::npos);
+  EXPECT_NE(
+      error(R"(, "loads": [{"body": "block", "type": "point", "near": {"rigid_body": "x", "distance": 0}, "x": 1}])")
+          .find("/loads/0/near/rigid_body"),
+      std::string::npos);
   EXPECT_NE(error(R"(, "rigid_bodies": [{"name": "block", "shape": {"circle": {"center": [0, 0], "radius": 1}}}])")
                 .find("/rigid_bodies/0/name"),
             std::string::npos);
