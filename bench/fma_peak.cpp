@@ -30,7 +30,8 @@ double independent_rate(long n) {
     MFSD_FMA_STEP(a3)
     MFSD_FMA_STEP(a4)
     MFSD_FMA_STEP(a5)
-    MFSD_FMA_STEP(a6) MFSD_FMA_STEP(a7) MFSD_FMA_STEP(a8) MFSD_FMA_STEP(a9) asm volatile(
+    MFSD_FMA_STEP(a6)
+    MFSD_FMA_STEP(a7) MFSD_FMA_STEP(a8) MFSD_FMA_STEP(a9) asm volatile(
         ""
         : "+v"(a0), "+v"(a1), "+v"(a2), "+v"(a3), "+v"(a4), "+v"(a5), "+v"(a6), "+v"(a7), "+v"(a8), "+v"(a9));
   }

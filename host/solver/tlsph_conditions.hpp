@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
 #include "host/scene/particle_expressions.hpp"
 #include "host/scene/particle_generator.hpp"
+#include "host/scene/scene_error.hpp"
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
 #include "host/solver/tlsph_views.hpp"
@@ -24,10 +26,10 @@ template <class B, int D, class Real>
 class TlsphConditions {
  public:
   // `where[id]` is the current index of the particle with original id `id`.
-  // `id` is the particle id field (for error reports).
-  void setup(const Scene& scene, const InitialParticles& init, const std::vector<Index>& where, const Index* id) {
+  // Compiles the expressions of every condition and load for Real (before
+  // any output exists: a constant beyond float range is an input error).
+  void compile(const Scene& scene) {
     scene_ = &scene;
-    id_ = id;
     body_external_work_.assign(scene.bodies.size(), 0.0);
     body_boundary_work_.assign(scene.bodies.size(), 0.0);
     std::map<std::string, size_t> body_index;
@@ -36,7 +38,6 @@ class TlsphConditions {
       Clamp k;
       k.name = scene.clamps[c].name;
       k.body = body_index.at(scene.clamps[c].body);
-      upload_indices(init.clamp_particles[c], where, k.particles);
       clamps_.push_back(std::move(k));
     }
     for (size_t c = 0; c < scene.conditions.size(); ++c) {
@@ -44,25 +45,25 @@ class TlsphConditions {
       auto cond = std::make_unique<Condition>();
       cond->spec = &spec;
       cond->body = body_index.at(spec.body);
-      const auto& sel = init.condition_particles[c];
-      upload_indices(sel.ids, where, cond->particles);
-      std::vector<Real> area(sel.area.begin(), sel.area.end());
-      from_host<B>(area, cond->area);
-      cond->count = sel.ids.size();
       const char* axis[3] = {"x", "y", "z"};
       for (int a = 0; a < D; ++a) {
         ComponentValue<Real>& cv = cond->component[a];
         cv = ComponentValue<Real>{ComponentValue<Real>::none, Real(0), {nullptr, 0, nullptr, 0}};
         if (spec.value[size_t(a)].empty()) continue;
-        cond->program[a] =
-            compile_particle_expression(spec.value[size_t(a)], scene, cond->body, condition_path(c) + "/" + axis[a]);
+        const std::string path = condition_path(c) + "/" + axis[a];
+        cond->program[a] = compile_particle_expression(spec.value[size_t(a)], scene, cond->body, path);
         const expr::Program& p = cond->program[a];
         if (p.is_constant()) {
           cv.kind = ComponentValue<Real>::constant;
           cv.value = Real(p.constant_value());
           continue;
         }
-        const auto view = p.template host_view<Real>();  // checks float range
+        expr::ProgramView<Real> view;
+        try {
+          view = p.template host_view<Real>();  // checks the float range
+        } catch (const expr::ExpressionError& e) {
+          throw SceneError(path + ": " + e.what());
+        }
         from_host<B>(p.code(), cond->code[a]);
         from_host<B>(std::vector<Real>(view.consts, view.consts + view.n_consts), cond->consts[a]);
         cv.kind = ComponentValue<Real>::program;
@@ -70,6 +71,21 @@ class TlsphConditions {
             expr::ProgramView<Real>{raw(cond->code[a]), int(p.code().size()), raw(cond->consts[a]), view.n_consts};
       }
       conditions_.push_back(std::move(cond));
+    }
+  }
+
+  // The selected particles, after reordering: `where[id]` is the current
+  // index of the particle with original id `id`; `id` the id field (for
+  // error reports).
+  void setup(const InitialParticles& init, const std::vector<Index>& where, const Index* id) {
+    id_ = id;
+    for (size_t c = 0; c < clamps_.size(); ++c) upload_indices(init.clamp_particles[c], where, clamps_[c].particles);
+    for (size_t c = 0; c < conditions_.size(); ++c) {
+      const auto& sel = init.condition_particles[c];
+      upload_indices(sel.ids, where, conditions_[c]->particles);
+      std::vector<Real> area(sel.area.begin(), sel.area.end());
+      from_host<B>(area, conditions_[c]->area);
+      conditions_[c]->count = sel.ids.size();
     }
   }
 
