@@ -11,7 +11,7 @@ conditions with the seed's expressions, measure planes):
             torsional cycle by t = 180 ms) and the energy balance.
 
 Writes docs/validation/seed001_<case>.json and .png.
-Usage: scripts/validation/seed001_cases.py plate|twisting [--threads N] [--dp DP]
+Usage: scripts/validation/seed001_cases.py plate|twisting [--threads N] [--dp DP] [--reuse]
 """
 import argparse
 import json
@@ -26,12 +26,16 @@ DOCS = os.path.join(m.ROOT, "docs", "validation")
 OUT = os.path.join(m.ROOT, "out", "validation")
 
 
+REUSE = False  # --reuse: analyse the finished run in out/validation again
+
+
 def run(config, name, sets, threads):
     out = os.path.join(OUT, name)
     extra = ["--threads", str(threads)] if threads else []
-    rc = m.run(config, {"output.vtu": "false", **sets}, out, extra)
-    if rc != 0:
-        sys.exit(f"[mfsd] run {name} failed with exit code {rc}")
+    if not (REUSE and os.path.exists(os.path.join(out, "timing.json"))):
+        rc = m.run(config, {"output.vtu": "false", **sets}, out, extra)
+        if rc != 0:
+            sys.exit(f"[mfsd] run {name} failed with exit code {rc}")
     return (m.read_csv(os.path.join(out, "probes.csv")), m.read_csv(os.path.join(out, "energies.csv")),
             m.read_json(os.path.join(out, "timing.json")))
 
@@ -87,8 +91,10 @@ def twisting(args):
                        args.threads)
     t = p["time"]
     # Twist of the top face: the angle of the edge probe about the column axis.
-    ang = [math.atan2(y - 0.5, x - 0.5) for x, y in zip(p["edge.position.x"], p["edge.position.y"])]
-    ang = [a - ang[0] for a in ang]
+    raw = [math.atan2(y - 0.5, x - 0.5) for x, y in zip(p["edge.position.x"], p["edge.position.y"])]
+    ang = [0.0]
+    for a, b in zip(raw[:-1], raw[1:]):  # unwrapped: the top turns by more than pi
+        ang.append(ang[-1] + (b - a + math.pi) % (2 * math.pi) - math.pi)
     k_max = max(range(len(t)), key=lambda i: ang[i])
     back = next((t[i - 1] + (t[i] - t[i - 1]) * ang[i - 1] / (ang[i - 1] - ang[i])
                  for i in range(k_max + 1, len(t)) if ang[i] <= 0 < ang[i - 1]), float("nan"))
@@ -123,7 +129,10 @@ def main():
     ap.add_argument("case", choices=["plate", "twisting"])
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--dp", type=float, default=0.0, help="particle spacing (default: see above)")
+    ap.add_argument("--reuse", action="store_true", help="analyse the finished run again")
     args = ap.parse_args()
+    global REUSE
+    REUSE = args.reuse
     res, fig = (plate if args.case == "plate" else twisting)(args)
     os.makedirs(DOCS, exist_ok=True)
     stem = os.path.join(DOCS, f"seed001_{args.case}")
