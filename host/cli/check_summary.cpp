@@ -5,11 +5,47 @@
 #include <sstream>
 
 #include "host/scene/body_properties.hpp"
+#include "host/scene/particle_expressions.hpp"
+#include "kernels/expr/interpreter.hpp"
+#include "kernels/tlsph/conditions.hpp"
 
 namespace mfsd {
 
+namespace {
+
+// Initial velocities as the run starts them: initial_velocity, then the
+// velocity conditions active at t = 0 (seed 001 sets initial fields that way).
+std::vector<Point3> initial_velocities(const Scene& s, const InitialParticles& P) {
+  std::vector<Point3> v = P.velocity;
+  for (size_t c = 0; c < s.conditions.size(); ++c) {
+    const ConditionSpec& cond = s.conditions[c];
+    if (cond.type != ConditionSpec::Type::velocity || cond.t_start > 0) continue;
+    size_t b = 0;
+    while (s.bodies[b].name != cond.body) ++b;
+    for (int a = 0; a < s.dimension; ++a) {
+      if (cond.value[size_t(a)].empty()) continue;
+      const expr::Program prog = compile_particle_expression(cond.value[size_t(a)], s, b, "velocity condition");
+      const auto view = prog.host_view<double>();
+      for (long i : P.condition_particles[c].ids) {
+        double vars[kParticleVariables] = {};
+        for (int k = 0; k < 3; ++k) {
+          vars[var_x0 + k] = vars[var_x + k] = P.position[size_t(i)][k];
+          vars[var_vx + k] = v[size_t(i)][k];
+        }
+        vars[var_dx] = s.bodies[b].spacing;
+        double value = 0;
+        if (expr::evaluate(view, vars, &value, nullptr) == expr::Status::ok) v[size_t(i)][a] = value;
+      }
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
 std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
   const Scene& s = doc.scene;
+  const std::vector<Point3> v0 = initial_velocities(s, P);
   std::ostringstream o;
   o.precision(6);
   o << "scene '" << s.name << "' from " << doc.source_name << ": valid\n";
@@ -28,7 +64,7 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
     const long n = P.body_range[b].end - P.body_range[b].begin;
     double vmax = 0;
     for (long i = P.body_range[b].begin; i < P.body_range[b].end; ++i) {
-      const auto& v = P.velocity[size_t(i)];
+      const auto& v = v0[size_t(i)];
       vmax = std::max(vmax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     }
     dt = std::min(dt, s.solver.cfl * p.h / (p.c0 + vmax));
