@@ -7,7 +7,9 @@
               against wall time per simulated second, per hourglass variant,
               resolution and precision (Pareto plot)
   roofline    STREAM-like triad and the bandwidth the force and deformation-rate
-              stages achieve, as a fraction of it
+              stages achieve, as a fraction of it, and the compute roof of one core
+  scenes      the seed 001 scenes at the seeds' resolutions: speed, memory, and how
+              long their full runs would take
   all         every suite
 Results: bench/results/<suite>-<date>.json, .md and .png."""
 import argparse
@@ -18,7 +20,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "suites"))
 import bench_lib as b  # noqa: E402
 
-SUITES = ["throughput", "scaling", "accuracy", "roofline"]
+SUITES = ["throughput", "scaling", "accuracy", "roofline", "scenes"]
 
 
 def main():
