@@ -1,0 +1,116 @@
+// Finite-strain J2 plasticity on the isochoric elastic left Cauchy-Green
+// tensor b_bar_e (seed 000 Appendix A, Algorithm 1; formulations.md section 2:
+// the return mapping of Simo, with b_bar_e in place of b in the neo-Hookean
+// deviatoric stress tau_dev = G dev(b_bar_e)). One material point, one step;
+// the caller (the stress stage of a plastic body, to come) forms the trial
+//   b_bar_e^trial = f_bar b_bar_e^n f_bar^T,  f_bar = J_f^{-1/3} F^{n+1} (F^n)^{-1},
+// and keeps b_bar_e and the equivalent plastic strain alpha per particle.
+// Always 3 x 3: plane-strain bodies embed F with F_33 = 1 and keep the
+// out-of-plane component of b_bar_e, which plastic flow changes.
+//
+//   s_tr = G dev(b_tr),  f_tr = |s_tr| - sqrt(2/3) sigma_Y(alpha_n)        (eq. A.1)
+//   elastic if f_tr <= 0; otherwise, with G_bar = G tr(b_tr)/3 and n = s_tr/|s_tr|,
+//   find dgamma >= 0 with
+//     r(dgamma) = |s_tr| - 2 G_bar dgamma - sqrt(2/3) sigma_Y(alpha_n + sqrt(2/3) dgamma) = 0
+//   (linear hardening: dgamma = f_tr / (2 (G_bar + H/3)), Algorithm 1 step 9),
+//   s = s_tr - 2 G_bar dgamma n,  alpha = alpha_n + sqrt(2/3) dgamma,
+//   b_bar_e = s / G + I_e I  with I_e chosen so that det(b_bar_e) = 1.
+// Algorithm 1 writes b_e = tau / G_bar + tr(b_tr)/d I; dividing by G (Simo)
+// keeps tau_dev = G dev(b_bar_e) consistent with the returned s, and fixing I_e
+// by det(b_bar_e) = 1 keeps the plastic flow isochoric exactly (both differ
+// from Algorithm 1 by O(elastic strain), negligible for metals). The update
+// integrates the flow to first order on b_bar_e, so alpha = sum sqrt(2/3) dgamma
+// exceeds the plastic log strain by a fraction of order the elastic strain
+// (0.56 % in uniaxial tension to a stretch of 1.3 with tau/E = 0.8 %,
+// tests/unit/test_j2_return_mapping.cpp); an exponential-map return would not.
+// Not yet used by a body: the stress stage of plastic bodies is issue 5.
+#pragma once
+#include "kernels/core/mat.hpp"
+
+namespace mfsd {
+
+// sigma_Y(alpha) = sigma_y + H alpha (perfect plasticity: H = 0).
+template <class Real>
+struct LinearHardening {
+  Real sigma_y, H;
+  MFSD_HD Real yield(Real alpha) const { return sigma_y + H * alpha; }
+  MFSD_HD Real slope(Real) const { return H; }
+};
+
+// sigma_Y(alpha) = sigma_y + H alpha + (sigma_inf - sigma_y)(1 - exp(-delta alpha))
+// (seed 000 Table 7; formulations.md section 2).
+template <class Real>
+struct SaturationHardening {
+  Real sigma_y, H, sigma_inf, delta;
+  MFSD_HD Real yield(Real alpha) const {
+    return sigma_y + H * alpha + (sigma_inf - sigma_y) * (Real(1) - math::exp(-delta * alpha));
+  }
+  MFSD_HD Real slope(Real alpha) const { return H + (sigma_inf - sigma_y) * delta * math::exp(-delta * alpha); }
+};
+
+template <class Real>
+struct J2Update {
+  Mat<3, Real> be_bar;  // updated isochoric elastic left Cauchy-Green tensor
+  Mat<3, Real> s;       // deviatoric Kirchhoff stress G dev(be_bar)
+  Real alpha;           // equivalent plastic strain
+  Real dgamma;          // plastic multiplier of the step (0: elastic)
+  int iterations;       // of the consistency solve (0: closed form or elastic)
+};
+
+// The consistency condition r(dgamma) = 0 on [0, |s_tr| / (2 G_bar)], where r
+// decreases (sigma_Y non-decreasing): Newton steps kept inside a shrinking
+// bracket, bisection when a step leaves it; converged to |r| <= 1e-12 |s_tr|
+// (1e-6 in float).
+template <class Real, class Hardening>
+MFSD_HD inline Real j2_consistency(Real s_norm, Real G_bar, Real alpha_n, const Hardening& h, int& iterations) {
+  const Real c = math::sqrt(Real(2) / Real(3));
+  const Real tol = (sizeof(Real) == 8 ? Real(1e-12) : Real(1e-6)) * s_norm;
+  Real lo = Real(0), hi = s_norm / (Real(2) * G_bar);
+  Real x = Real(0);
+  iterations = 0;
+  for (int k = 0; k < 100; ++k) {
+    ++iterations;
+    const Real r = s_norm - Real(2) * G_bar * x - c * h.yield(alpha_n + c * x);
+    if (math::fabs(r) <= tol) break;
+    if (r > 0)
+      lo = x;
+    else
+      hi = x;
+    const Real dr = -Real(2) * G_bar - Real(2) / Real(3) * h.slope(alpha_n + c * x);
+    Real next = x - r / dr;
+    if (!(next > lo && next < hi)) next = Real(0.5) * (lo + hi);
+    x = next;
+  }
+  return x;
+}
+
+template <class Real, class Hardening>
+MFSD_HD inline J2Update<Real> j2_return_mapping(const Mat<3, Real>& be_bar_trial, Real alpha_n, Real G,
+                                                const Hardening& h) {
+  const Real c = math::sqrt(Real(2) / Real(3));
+  const Mat<3, Real> s_tr = deviator(be_bar_trial) * G;
+  const Real s_norm = frobenius_norm(s_tr);
+  const Real f_tr = s_norm - c * h.yield(alpha_n);  // eq. A.1
+  if (f_tr <= Real(0)) return J2Update<Real>{be_bar_trial, s_tr, alpha_n, Real(0), 0};
+  const Real I_tr = trace(be_bar_trial) / Real(3);
+  const Real G_bar = G * I_tr;
+  int iterations = 0;
+  const Real dgamma = j2_consistency(s_norm, G_bar, alpha_n, h, iterations);
+  const Mat<3, Real> s = s_tr * (Real(1) - Real(2) * G_bar * dgamma / s_norm);
+  // b_bar_e = A + x I with A = s / G (traceless) and det = 1:
+  //   x^3 - 1/2 tr(A^2) x + det(A) - 1 = 0, Newton from the trial's I_tr.
+  const Mat<3, Real> A = s * (Real(1) / G);
+  const Real p = Real(0.5) * ddot(A, A), q = det(A) - Real(1);
+  Real x = I_tr;
+  for (int k = 0; k < 20; ++k) {
+    const Real r = x * x * x - p * x + q, dr = Real(3) * x * x - p;
+    const Real dx = r / dr;
+    x -= dx;
+    if (math::fabs(dx) <= Real(1e-15) * x) break;
+  }
+  Mat<3, Real> be = A;
+  be.add_diagonal(x);
+  return J2Update<Real>{be, s, alpha_n + c * dgamma, dgamma, iterations};
+}
+
+}  // namespace mfsd
