@@ -33,9 +33,9 @@ double independent_rate(long n) {
     MFSD_FMA_STEP(a6)
     MFSD_FMA_STEP(a7)
     MFSD_FMA_STEP(a8)
-    MFSD_FMA_STEP(a9) asm volatile(""
-                                   : "+v"(a0), "+v"(a1), "+v"(a2), "+v"(a3), "+v"(a4), "+v"(a5), "+v"(a6), "+v"(a7),
-                                     "+v"(a8), "+v"(a9));
+    MFSD_FMA_STEP(a9)
+    asm volatile(""
+                 : "+v"(a0), "+v"(a1), "+v"(a2), "+v"(a3), "+v"(a4), "+v"(a5), "+v"(a6), "+v"(a7), "+v"(a8), "+v"(a9));
   }
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const V4 sum = a0 + a1 + a2 + a3 + a4 + a5 + a6 + a7 + a8 + a9;

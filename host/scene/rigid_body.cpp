@@ -34,14 +34,7 @@ Point3 RigidBodyMotion::translation(double t) const {
 }
 
 std::array<double, 9> RigidBodyMotion::rotation(double t) const {
-  const double angle = angle_.evaluate_host(&t) * M_PI / 180;
-  Point3 n = spec_.axis;
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (auto& x : n) x /= len;
-  const double c = std::cos(angle), s = std::sin(angle), k = 1 - c;
-  return {k * n[0] * n[0] + c,        k * n[0] * n[1] - s * n[2], k * n[0] * n[2] + s * n[1],
-          k * n[0] * n[1] + s * n[2], k * n[1] * n[1] + c,        k * n[1] * n[2] - s * n[0],
-          k * n[0] * n[2] - s * n[1], k * n[1] * n[2] + s * n[0], k * n[2] * n[2] + c};
+  return rotation_matrix(spec_.axis, angle_.evaluate_host(&t) * M_PI / 180);
 }
 
 Point3 RigidBodyMotion::position(const Point3& X, double t) const {

@@ -31,6 +31,15 @@ bool polygon_contains(const std::vector<std::array<double, 2>>& v, double x, dou
 
 }  // namespace
 
+std::array<double, 9> rotation_matrix(Point3 n, double angle) {
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (auto& x : n) x /= len;
+  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;  // Rodrigues
+  return {t * n[0] * n[0] + c,        t * n[0] * n[1] - s * n[2], t * n[0] * n[2] + s * n[1],
+          t * n[0] * n[1] + s * n[2], t * n[1] * n[1] + c,        t * n[1] * n[2] - s * n[0],
+          t * n[0] * n[2] - s * n[1], t * n[1] * n[2] + s * n[0], t * n[2] * n[2] + c};
+}
+
 bool Shape::contains(const Point3& p, int dim, double tol) const {
   switch (kind) {
     case Kind::box:

@@ -20,6 +20,9 @@ struct Bounds {
 
 class TriangleMesh;
 
+// Rotation matrix (row-major) about an axis (any length > 0) by an angle [rad].
+std::array<double, 9> rotation_matrix(Point3 axis, double angle);
+
 struct Shape {
   enum class Kind { box, sphere, cylinder, circle, polygon, extrude, mesh, transform, union_of, difference };
   Kind kind = Kind::box;

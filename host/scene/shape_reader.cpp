@@ -43,16 +43,6 @@ Shape read_list(JsonNode& node, const std::string& key, Shape::Kind kind, int di
   return s;
 }
 
-// Rotation matrix (row-major) about a unit axis by an angle (Rodrigues).
-std::array<double, 9> rotation(Point3 n, double angle) {
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (auto& x : n) x /= len;
-  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
-  return {t * n[0] * n[0] + c,        t * n[0] * n[1] - s * n[2], t * n[0] * n[2] + s * n[1],
-          t * n[0] * n[1] + s * n[2], t * n[1] * n[1] + c,        t * n[1] * n[2] - s * n[0],
-          t * n[0] * n[2] - s * n[1], t * n[1] * n[2] + s * n[0], t * n[2] * n[2] + c};
-}
-
 void radii(JsonNode& n, Shape& s) {
   s.radius = n.number("radius", Range::positive());
   s.inner_radius = n.number("inner_radius", 0.0, Range::non_negative());
@@ -167,7 +157,7 @@ Shape read_shape(JsonNode node, int dim, const std::string& base_dir) {
       if (v[0] == 0 && v[1] == 0 && v[2] == 0)
         throw SceneError(n.key_path("axis"), "a zero vector", "the rotation axis");
     }
-    s.rotation = rotation(axis, angle);
+    s.rotation = rotation_matrix(axis, angle);
     n.finish();
   } else if (key == "union") {
     s = read_list(node, "union", Shape::Kind::union_of, dim, 1, base_dir);

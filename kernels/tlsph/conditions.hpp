@@ -93,11 +93,15 @@ struct ConditionSumsCombine {
   }
 };
 
-// Evaluates the given components of particle i; returns false (and fills
-// `error`) at the first run-time error. mask bit a: component a was set.
+// Evaluates the given components at particle i (its variables from X, u, v
+// and the time); returns false (and fills `error`) at the first run-time
+// error. mask bit a: component a was set (not absent, not skipped).
 template <int D, class Real>
-MFSD_HD inline bool evaluate_components(const ComponentValue<Real> (&c)[3], const Real* vars, Index i, Real (&value)[3],
-                                        int& mask, ConditionError& error) {
+MFSD_HD inline bool evaluate_components(const ComponentValue<Real> (&c)[3], const Vec<D, Real>& X,
+                                        const Vec<D, Real>& u, const Vec<D, Real>& v, Real t, Real dt, Real dx, Index i,
+                                        Real (&value)[3], int& mask, ConditionError& error) {
+  Real vars[kParticleVariables];
+  particle_variables<D, Real>(X, u, v, t, dt, dx, vars);
   mask = 0;
   for (int a = 0; a < D; ++a) {
     if (c[a].kind == ComponentValue<Real>::none) continue;
@@ -138,12 +142,12 @@ struct LoadFunctor {
   MFSD_HD ConditionSums operator()(Index k) const {
     ConditionSums s = ConditionSums::zero();
     const Index i = particles[k];
-    Real vars[kParticleVariables];
-    particle_variables<D, Real>(reference_position[i], displacement[i], velocity[i], t, dt, dx, vars);
     Real value[3] = {Real(0), Real(0), Real(0)};
     int mask = 0;
-    if (!evaluate_components<D, Real>(component, vars, i, value, mask, s.error)) return s;
-    if (!mask) return s;
+    if (!evaluate_components<D, Real>(component, reference_position[i], displacement[i], velocity[i], t, dt, dx, i,
+                                      value, mask, s.error) ||
+        !mask)
+      return s;
     const Real mass = density * volume[i];
     Vec<D, Real> f = Vec<D, Real>::zero();
     for (int a = 0; a < D; ++a) {
@@ -183,12 +187,12 @@ struct VelocityConditionFunctor {
   MFSD_HD ConditionSums operator()(Index k) const {
     ConditionSums s = ConditionSums::zero();
     const Index i = particles[k];
-    Real vars[kParticleVariables];
-    particle_variables<D, Real>(reference_position[i], displacement[i], velocity[i], t, dt, dx, vars);
     Real value[3] = {Real(0), Real(0), Real(0)};
     int mask = 0;
-    if (!evaluate_components<D, Real>(component, vars, i, value, mask, s.error)) return s;
-    if (!mask) return s;
+    if (!evaluate_components<D, Real>(component, reference_position[i], displacement[i], velocity[i], t, dt, dx, i,
+                                      value, mask, s.error) ||
+        !mask)
+      return s;
     const Real mass = density * volume[i];
     Vec<D, Real> v = velocity[i];
     for (int a = 0; a < D; ++a) {

@@ -40,6 +40,15 @@ def run(config, name, sets, threads):
             m.read_json(os.path.join(out, "timing.json")))
 
 
+def energy_panel(ax, e):
+    """Kinetic, strain and their sum from energies.csv."""
+    for key in ("kinetic", "strain", "total"):
+        ax.plot(e["time"], e[key], label=key)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("energy [J]")
+    ax.legend(fontsize=7)
+
+
 def plt():
     import matplotlib
     matplotlib.use("Agg")
@@ -74,12 +83,7 @@ def plate(args):
     ax[0].set_xlabel("t [s]")
     ax[0].set_ylabel("tip deflection u_z [mm]")
     ax[0].legend(fontsize=7)
-    ax[1].plot(e["time"], e["kinetic"], label="kinetic")
-    ax[1].plot(e["time"], e["strain"], label="strain")
-    ax[1].plot(e["time"], e["total"], label="total")
-    ax[1].set_xlabel("t [s]")
-    ax[1].set_ylabel("energy [J]")
-    ax[1].legend(fontsize=7)
+    energy_panel(ax[1], e)
     fig.suptitle("Cantilever plate 3D (seed 001 4.1.2), SVK, genog")
     fig.tight_layout()
     return res, fig
@@ -113,12 +117,7 @@ def twisting(args):
     ax[0].set_xlabel("t [s]")
     ax[0].set_ylabel("twist of the top face [rad]")
     ax[0].legend(fontsize=7)
-    ax[1].plot(e["time"], e["kinetic"], label="kinetic")
-    ax[1].plot(e["time"], e["strain"], label="strain")
-    ax[1].plot(e["time"], e["total"], label="total")
-    ax[1].set_xlabel("t [s]")
-    ax[1].set_ylabel("energy [J]")
-    ax[1].legend(fontsize=7)
+    energy_panel(ax[1], e)
     fig.suptitle(f"Twisting column (seed 001 4.1.4, Fig. 21 expressions), dx = {dp:.4f} m, genog")
     fig.tight_layout()
     return res, fig
