@@ -76,10 +76,12 @@ def run(dp, end_time, threads, fast=False, reuse=False):
     p = m.read_csv(os.path.join(out, "probes.csv"))
     e = m.read_csv(os.path.join(out, "energies.csv"))
     timing = m.read_json(os.path.join(out, "timing.json"))
+    run_commit = m.read_json(os.path.join(out, "run.json")).get("git_commit")
     t, uy = p["time"], p["tip.displacement.y"]
     t_max, u_max = first_maximum(t, uy)
     balance = e["balance"]
     return {"dx_mm": dp * 1e3, "end_time": end_time, "seed_expressions_on_every_particle": not fast,
+            "mfsd_commit_of_the_run": run_commit,
             "particles": timing["particles"], "steps": timing["steps"],
             "wall_seconds": timing["wall_seconds"],
             "particle_steps_per_second": timing["particle_steps_per_second"],

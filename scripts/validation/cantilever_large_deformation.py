@@ -89,6 +89,7 @@ def main():
            + (f" --tmax {args.tmax}" if args.tmax != 0.02 else ""), "machine": m.machine(), "tmax": args.tmax,
            "load_parameter": alpha, "elastica": {"ux_over_L": ex, "uz_over_L": -ez, "tip_angle_rad": tip_angle},
            "particles": timing["particles"], "steps": timing["steps"], "wall_seconds": timing["wall_seconds"],
+           "mfsd_commit_of_the_run": m.read_json(os.path.join(out, "run.json")).get("git_commit"),
            "particle_steps_per_second": timing["particle_steps_per_second"],
            "hold_mean": {"ux_over_L": mean(ux) / L, "uz_over_L": mean(uz) / L},
            "hold_range": {"uz_over_L": [min(uz[k] for k in hold) / L, max(uz[k] for k in hold) / L]},

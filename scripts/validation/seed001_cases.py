@@ -36,8 +36,9 @@ def run(config, name, sets, threads):
         rc = m.run(config, {"output.vtu": "false", **sets}, out, extra)
         if rc != 0:
             sys.exit(f"[mfsd] run {name} failed with exit code {rc}")
-    return (m.read_csv(os.path.join(out, "probes.csv")), m.read_csv(os.path.join(out, "energies.csv")),
-            m.read_json(os.path.join(out, "timing.json")))
+    timing = m.read_json(os.path.join(out, "timing.json"))
+    timing["mfsd_commit_of_the_run"] = m.read_json(os.path.join(out, "run.json")).get("git_commit")
+    return m.read_csv(os.path.join(out, "probes.csv")), m.read_csv(os.path.join(out, "energies.csv")), timing
 
 
 def energy_panel(ax, e):
@@ -68,6 +69,7 @@ def plate(args):
     k = max(range(len(t)), key=lambda i: uz[i] if t[i] < 0.75 * ref["period"] else -1e9)
     res = {"study": "seed001_plate", "command": "scripts/validation/seed001_cases.py plate", "machine": m.machine(),
            "dx": dp, "particles": timing["particles"], "steps": timing["steps"],
+           "mfsd_commit_of_the_run": timing["mfsd_commit_of_the_run"],
            "wall_seconds": timing["wall_seconds"], "particle_steps_per_second": timing["particle_steps_per_second"],
            "euler_bernoulli": ref, "period": m.period(t, uz), "amplitude": uz[k],
            "energy_balance_largest_deviation": max(abs(b - e["balance"][0]) for b in e["balance"]) / e["balance"][0]}
@@ -104,6 +106,7 @@ def twisting(args):
                  for i in range(k_max + 1, len(t)) if ang[i] <= 0 < ang[i - 1]), float("nan"))
     res = {"study": "seed001_twisting", "command": "scripts/validation/seed001_cases.py twisting",
            "machine": m.machine(), "dx": dp, "particles": timing["particles"], "steps": timing["steps"],
+           "mfsd_commit_of_the_run": timing["mfsd_commit_of_the_run"],
            "wall_seconds": timing["wall_seconds"], "particle_steps_per_second": timing["particle_steps_per_second"],
            "largest_twist_rad": ang[k_max], "largest_twist_time": t[k_max], "twist_back_to_zero_time": back,
            "hourglass_mean_peak": max(e["hourglass_mean"]),
