@@ -82,6 +82,7 @@ std::vector<std::string> boundary_force_columns(const Scene& scene) {
   };
   for (auto& c : scene.clamps) add(c.name);
   for (auto& c : scene.conditions) add(c.name);
+  for (auto& w : scene.walls) add(w.name);
   return cols;
 }
 

@@ -2,6 +2,7 @@
 // seed 001's bcvel and bcforce cards as JSON. Expressions are kept as text
 // here and compiled by the particle generator, which knows the body constants.
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <vector>
@@ -85,6 +86,36 @@ void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& 
     node.finish();
     scene.conditions.push_back(c);
   }
+  auto walls = root.array("walls", false);
+  for (size_t k = 0; k < walls.size(); ++k) {
+    JsonNode node = root.element("walls", k, *walls[k]);
+    WallSpec w;
+    w.name = node.string("name", "wall" + std::to_string(k));
+    if (!names.insert(w.name).second)
+      throw SceneError(node.key_path("name"), "\"" + w.name + "\"",
+                       "a name no other clamp, condition, load or wall has");
+    const auto p = node.vector("point", size_t(dim), Range::any());
+    const auto n = node.vector("normal", size_t(dim), Range::any());
+    double len = 0;
+    for (int a = 0; a < dim; ++a) len += n[size_t(a)] * n[size_t(a)];
+    if (len == 0)
+      throw SceneError(node.key_path("normal"), "a zero vector",
+                       "the wall's normal, pointing to the side the bodies stay on");
+    w.normal = {0, 0, 0};
+    for (int a = 0; a < dim; ++a) w.point[a] = p[size_t(a)], w.normal[a] = n[size_t(a)] / std::sqrt(len);
+    auto list = node.array("bodies", false);
+    for (size_t b = 0; b < list.size(); ++b) {
+      const Json& v = *list[b];
+      const std::string path = node.key_path("bodies") + "/" + std::to_string(b);
+      if (!v.is_string() || !body_names.count(v.get<std::string>()))
+        throw SceneError(path, json_text(v), "the name of a body");
+      w.bodies.push_back(v.get<std::string>());
+      node.resolved()["bodies"][b] = v;
+    }
+    node.finish();
+    scene.walls.push_back(w);
+  }
+
   auto loads = root.array("loads", false);
   for (size_t k = 0; k < loads.size(); ++k) {
     JsonNode node = root.element("loads", k, *loads[k]);

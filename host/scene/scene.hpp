@@ -40,6 +40,15 @@ struct ClampSpec {
   Shape region;
 };
 
+// A rigid frictionless wall: the plane through `point` with unit `normal`
+// pointing to the allowed side; acts on the listed bodies (all when empty).
+struct WallSpec {
+  std::string name;  // column prefix of its reaction in boundary_forces.csv
+  Point3 point{0, 0, 0};
+  Point3 normal{0, 0, 1};
+  std::vector<std::string> bodies;
+};
+
 // A kinematic rigid body (host/scene/rigid_body.hpp): a shape moved by
 // x(t) = center + R(angle(t)) (X - center) + translation(t).
 struct RigidBodySpec {
@@ -131,6 +140,7 @@ struct Scene {
   std::vector<ClampSpec> clamps;
   std::vector<RigidBodySpec> rigid_bodies;
   std::vector<ConditionSpec> conditions;  // velocity_conditions, then loads
+  std::vector<WallSpec> walls;
   std::vector<ProbeSpec> probes;
   std::vector<MeasurePlaneSpec> measure_planes;
   OutputSpec output;

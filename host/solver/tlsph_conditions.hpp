@@ -4,6 +4,7 @@
 // boundary_forces.csv. The functors are in kernels/tlsph/conditions.hpp.
 // Include after the backend header.
 #pragma once
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -39,6 +40,14 @@ class TlsphConditions {
       k.name = scene.clamps[c].name;
       k.body = body_index.at(scene.clamps[c].body);
       clamps_.push_back(std::move(k));
+    }
+    for (const WallSpec& w : scene.walls) {
+      Wall wall;
+      wall.spec = &w;
+      for (size_t b = 0; b < scene.bodies.size(); ++b)
+        if (w.bodies.empty() || std::find(w.bodies.begin(), w.bodies.end(), scene.bodies[b].name) != w.bodies.end())
+          wall.bodies.push_back(b);
+      walls_.push_back(wall);
     }
     for (size_t c = 0; c < scene.conditions.size(); ++c) {
       const ConditionSpec& spec = scene.conditions[c];
@@ -77,8 +86,10 @@ class TlsphConditions {
   // The selected particles, after reordering: `where[id]` is the current
   // index of the particle with original id `id`; `id` the id field (for
   // error reports).
-  void setup(const InitialParticles& init, const std::vector<Index>& where, const Index* id) {
+  void setup(const InitialParticles& init, const std::vector<Index>& where, const Index* id,
+             const std::vector<BodyRange>& ranges) {
     id_ = id;
+    ranges_ = ranges;
     for (size_t c = 0; c < clamps_.size(); ++c) upload_indices(init.clamp_particles[c], where, clamps_[c].particles);
     for (size_t c = 0; c < conditions_.size(); ++c) {
       const auto& sel = init.condition_particles[c];
@@ -139,6 +150,27 @@ class TlsphConditions {
       finish(*c, s, v, te, step);
       body_boundary_work_[c->body] += s.power * dt;
     }
+    for (auto& w : walls_) {
+      w.force = Point3{0, 0, 0};
+      for (size_t b : w.bodies) {
+        WallFunctor<D, Real> f{{},
+                               {},
+                               Real(0.5 * scene_->bodies[b].spacing),
+                               Real(dt),
+                               ranges_[b].begin,
+                               Real(scene_->bodies[b].material.density),
+                               v.reference_position,
+                               v.displacement,
+                               v.acceleration,
+                               v.volume,
+                               v.velocity};
+        for (int a = 0; a < D; ++a) f.point.v[a] = Real(w.spec->point[a]), f.normal.v[a] = Real(w.spec->normal[a]);
+        const ConditionSums s =
+            transform_reduce<B>(0, ranges_[b].size(), f, ConditionSums::zero(), ConditionSumsCombine{});
+        for (int a = 0; a < 3; ++a) w.force[a] += s.force[a];
+        body_boundary_work_[b] += s.power * dt;
+      }
+    }
     for (auto& k : clamps_) clamp(k, v, dt);
   }
 
@@ -150,6 +182,7 @@ class TlsphConditions {
     std::vector<BoundaryForceSample> out;
     for (auto& k : clamps_) out.push_back({k.name, k.force});
     for (auto& c : conditions_) out.push_back({c->spec->name, c->force});
+    for (auto& w : walls_) out.push_back({w.spec->name, w.force});
     return out;
   }
 
@@ -158,6 +191,11 @@ class TlsphConditions {
     std::string name;
     size_t body = 0;
     DeviceVector<B, Index> particles;
+    Point3 force{0, 0, 0};
+  };
+  struct Wall {
+    const WallSpec* spec = nullptr;
+    std::vector<size_t> bodies;
     Point3 force{0, 0, 0};
   };
   struct Condition {
@@ -240,6 +278,8 @@ class TlsphConditions {
   const Scene* scene_ = nullptr;
   const Index* id_ = nullptr;
   std::vector<Clamp> clamps_;
+  std::vector<Wall> walls_;
+  std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<Condition>> conditions_;
   std::vector<double> body_external_work_, body_boundary_work_;
 };

@@ -173,7 +173,7 @@ class TlsphSolver final : public Solver {
     const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
     std::vector<Index> where(ids.size());
     for (size_t k = 0; k < ids.size(); ++k) where[size_t(ids[k])] = Index(k);
-    conditions_.setup(init_, where, particles_.template get<Index>(field::id));
+    conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
     std::vector<Index> probe_index;
     probe_offsets_.assign(1, 0);
     for (const auto& members : init_.probe_particles) {

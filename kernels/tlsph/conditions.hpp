@@ -210,6 +210,47 @@ struct VelocityConditionFunctor {
   }
 };
 
+// Rigid frictionless wall (plane through `point` with unit normal `normal`
+// pointing into the allowed side), kinematic form: particle centres keep
+// at least half a spacing from the plane. At the end of the step a particle
+// will be at x^{n+1/2} + dt/2 v^{n+1} (seed 000 eq. 37), so the normal
+// velocity is raised to v_n >= -2 g / dt, g = (x^{n+1/2} - point).n - dp/2:
+// no penetration at the step's end, a perfectly plastic (restitution 0)
+// impact, tangential velocity untouched. The reaction m (v_new - v_old)/dt
+// and its power are summed like those of a velocity condition.
+template <int D, class Real>
+struct WallFunctor {
+  Vec<D, Real> point, normal;
+  Real half_dp;
+  Real dt;
+  Index begin;  // the body's particles [begin, begin + n)
+  Real density;
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Vec<D, Real>* acceleration;
+  const Real* volume;
+  Vec<D, Real>* velocity;
+
+  MFSD_HD ConditionSums operator()(Index k) const {
+    ConditionSums s = ConditionSums::zero();
+    const Index i = begin + k;
+    const Vec<D, Real> x = reference_position[i] + displacement[i];
+    const Real gap = dot(x - point, normal) - half_dp;
+    const Vec<D, Real> v = velocity[i];
+    const Real vn = dot(v, normal), vn_min = -Real(2) * gap / dt;
+    if (!(vn < vn_min)) return s;
+    const Vec<D, Real> dv = normal * (vn_min - vn);
+    velocity[i] = v + dv;
+    const double m = double(density) * double(volume[i]);
+    const Vec<D, Real> v_old = v - acceleration[i] * dt;
+    for (int a = 0; a < D; ++a) {
+      s.force[a] = m * double(dv.v[a]) / double(dt);
+      s.power += s.force[a] * 0.5 * (double(v_old.v[a]) + double(v.v[a] + dv.v[a]));
+    }
+    return s;
+  }
+};
+
 // Clamp (formulations.md 1): the particle keeps its reference position and
 // zero velocity; the reaction is the force that stops it, R_i = -m_i v_i / dt
 // (its power is zero: the particle does not move). dt = 0 only clamps.
