@@ -60,18 +60,27 @@ void read_window(JsonNode& node, ConditionSpec& c) {
 
 }  // namespace
 
-void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names) {
+std::string read_body_name(JsonNode& node, const std::string& key, const std::set<std::string>& bodies) {
+  const std::string name = node.string(key);
+  if (!bodies.count(name)) throw SceneError(node.key_path(key), "\"" + name + "\"", "the name of a body");
+  return name;
+}
+
+std::string read_unique_name(JsonNode& node, const std::string& fallback, std::set<std::string>& taken,
+                             const std::string& among) {
+  const std::string name = node.string("name", fallback);
+  if (!taken.insert(name).second)
+    throw SceneError(node.key_path("name"), "\"" + name + "\"", "a name no other " + among + " has");
+  return name;
+}
+
+void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names,
+                     std::set<std::string>& names) {
   const int dim = scene.dimension;
-  std::set<std::string> names;
-  for (auto& c : scene.clamps)
-    if (!names.insert(c.name).second)
-      throw SceneError("/clamps", "two clamps named \"" + c.name + "\"", "unique names");
+  const std::string among = "clamp, condition, load or wall";
   auto read_common = [&](JsonNode& node, ConditionSpec& c, const std::string& default_name) {
-    c.name = node.string("name", default_name);
-    if (!names.insert(c.name).second)
-      throw SceneError(node.key_path("name"), "\"" + c.name + "\"", "a name no other clamp, condition or load has");
-    c.body = node.string("body");
-    if (!body_names.count(c.body)) throw SceneError(node.key_path("body"), "\"" + c.body + "\"", "the name of a body");
+    c.name = read_unique_name(node, default_name, names, among);
+    c.body = read_body_name(node, "body", body_names);
     c.select = read_selection(node, scene);
     read_components(node, c, dim);
     read_window(node, c);
@@ -90,10 +99,7 @@ void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& 
   for (size_t k = 0; k < walls.size(); ++k) {
     JsonNode node = root.element("walls", k, *walls[k]);
     WallSpec w;
-    w.name = node.string("name", "wall" + std::to_string(k));
-    if (!names.insert(w.name).second)
-      throw SceneError(node.key_path("name"), "\"" + w.name + "\"",
-                       "a name no other clamp, condition, load or wall has");
+    w.name = read_unique_name(node, "wall" + std::to_string(k), names, among);
     const auto p = node.vector("point", size_t(dim), Range::any());
     const auto n = node.vector("normal", size_t(dim), Range::any());
     double len = 0;

@@ -221,20 +221,19 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
   }
 
   auto clamps = root.array("clamps", false);
+  std::set<std::string> boundary_names;  // clamps, conditions, loads, walls: columns of boundary_forces.csv
   for (size_t c = 0; c < clamps.size(); ++c) {
     JsonNode node = root.element("clamps", c, *clamps[c]);
     ClampSpec clamp;
-    clamp.name = node.string("name", "clamp" + std::to_string(c));
-    clamp.body = node.string("body");
-    if (!names.count(clamp.body))
-      throw SceneError(node.key_path("body"), "\"" + clamp.body + "\"", "the name of a body");
+    clamp.name = read_unique_name(node, "clamp" + std::to_string(c), boundary_names, "clamp");
+    clamp.body = read_body_name(node, "body", names);
     clamp.region = read_shape(node.object("region"), dim, scene.base_dir);
     node.finish();
     scene.clamps.push_back(clamp);
   }
 
   read_rigid_bodies(root, scene);
-  read_conditions(root, scene, names);
+  read_conditions(root, scene, names, boundary_names);
   read_measure_planes(root, scene, names);
 
   auto probes = root.array("probes", false);

@@ -31,8 +31,17 @@ void apply_override(Json& doc, const std::string& assignment);
 // (STL) are relative to `base_dir`, the scene file's folder.
 Shape read_shape(JsonNode node, int dim, const std::string& base_dir);
 
-// velocity_conditions[] and loads[] into scene.conditions (condition_reader.cpp).
-void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
+// The body named by `key` (an error unless it is one of `bodies`).
+std::string read_body_name(JsonNode& node, const std::string& key, const std::set<std::string>& bodies);
+// "name" (or `fallback`), which must not be in `taken`; adds it there.
+std::string read_unique_name(JsonNode& node, const std::string& fallback, std::set<std::string>& taken,
+                             const std::string& among);
+
+// velocity_conditions[], walls[] and loads[] into scene.conditions and
+// scene.walls (condition_reader.cpp); `names` holds the clamps' names, and
+// the names of all of them must differ (they are columns of boundary_forces.csv).
+void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& body_names,
+                     std::set<std::string>& names);
 
 // rigid_bodies[] into scene.rigid_bodies (rigid_body_reader.cpp); after the bodies.
 void read_rigid_bodies(JsonNode& root, Scene& scene);

@@ -117,20 +117,12 @@ class TlsphConditions {
       c->force = Point3{0, 0, 0};
       if (!c->active(te)) continue;
       const Index n = Index(c->count);
-      LoadFunctor<D, Real> f{raw(c->particles),
+      LoadFunctor<D, Real> f{selected(*c, v, te, dt),
                              c->spec->type == ConditionSpec::Type::traction ? raw(c->area) : nullptr,
-                             {c->component[0], c->component[1], c->component[2]},
                              c->spec->type == ConditionSpec::Type::point_force ? LoadType::point
                              : c->spec->type == ConditionSpec::Type::traction  ? LoadType::traction
                                                                                : LoadType::acceleration,
                              Real(1.0 / double(n)),
-                             Real(scene_->bodies[c->body].material.density),
-                             Real(te),
-                             Real(dt),
-                             Real(scene_->bodies[c->body].spacing),
-                             v.reference_position,
-                             v.displacement,
-                             v.volume,
                              v.velocity,
                              v.acceleration};
       const ConditionSums s = transform_reduce<B>(0, n, f, ConditionSums::zero(), ConditionSumsCombine{});
@@ -231,20 +223,22 @@ class TlsphConditions {
   }
 
   ConditionSums velocity(Condition& c, const TlsphViews<D, Real>& v, double te, double dt) {
-    VelocityConditionFunctor<D, Real> f{raw(c.particles),
-                                        {c.component[0], c.component[1], c.component[2]},
-                                        Real(scene_->bodies[c.body].material.density),
-                                        Real(te),
-                                        Real(dt),
-                                        Real(scene_->bodies[c.body].spacing),
-                                        v.reference_position,
-                                        v.displacement,
-                                        v.volume,
-                                        v.acceleration,
-                                        v.velocity};
+    VelocityConditionFunctor<D, Real> f{selected(c, v, te, dt), v.acceleration, v.velocity};
     const ConditionSums s = transform_reduce<B>(0, Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{});
     if (dt == 0.0) finish(c, s, v, te, 0);
     return s;
+  }
+
+  SelectedComponents<D, Real> selected(const Condition& c, const TlsphViews<D, Real>& v, double te, double dt) const {
+    return SelectedComponents<D, Real>{raw(c.particles),
+                                       {c.component[0], c.component[1], c.component[2]},
+                                       Real(scene_->bodies[c.body].material.density),
+                                       Real(te),
+                                       Real(dt),
+                                       Real(scene_->bodies[c.body].spacing),
+                                       v.reference_position,
+                                       v.displacement,
+                                       v.volume};
   }
 
   void clamp(Clamp& k, const TlsphViews<D, Real>& v, double dt) {

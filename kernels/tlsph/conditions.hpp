@@ -122,33 +122,58 @@ MFSD_HD inline bool evaluate_components(const ComponentValue<Real> (&c)[3], cons
   return true;
 }
 
+// What loads and velocity conditions share: their selected particles, the
+// components and the particle fields the expressions read.
+template <int D, class Real>
+struct SelectedComponents {
+  const Index* particles;  // selected particles (current order)
+  ComponentValue<Real> component[3];
+  Real density;
+  Real t, dt, dx;  // t: the evaluation time
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Real* volume;
+
+  // The values of selected particle k (index i); false when none was set or
+  // an expression failed (then `error` is filled).
+  MFSD_HD bool evaluate(Index k, const Vec<D, Real>* velocity, Index& i, Real (&value)[3], int& mask,
+                        ConditionError& error) const {
+    i = particles[k];
+    return evaluate_components<D, Real>(component, reference_position[i], displacement[i], velocity[i], t, dt, dx, i,
+                                        value, mask, error) &&
+           mask;
+  }
+  MFSD_HD Real mass(Index i) const { return density * volume[i]; }
+};
+
+// Adds to `s` the reaction of a constraint that changed a velocity component
+// from v_before to v_after within the step (v_start: its value at t^n): the
+// force m (v_after - v_before)/dt and its power at the mid-step velocity.
+MFSD_HD inline void add_reaction(ConditionSums& s, int a, double m, double v_start, double v_before, double v_after,
+                                 double dt) {
+  const double force = m * (v_after - v_before) / dt;
+  s.force[a] += force;
+  s.power += force * 0.5 * (v_start + v_after);
+}
+
 enum class LoadType : int { point, traction, acceleration };
 
 template <int D, class Real>
 struct LoadFunctor {
-  const Index* particles;  // selected particles (current order)
-  const Real* area;        // per selected particle (traction), else null
-  ComponentValue<Real> component[3];
+  SelectedComponents<D, Real> sel;  // t = t^n + dt/2
+  const Real* area;                 // per selected particle (traction), else null
   LoadType type;
   Real share;  // 1 / n for point loads
-  Real density;
-  Real t, dt, dx;  // t: evaluation time (t^n + dt/2)
-  const Vec<D, Real>* reference_position;
-  const Vec<D, Real>* displacement;
-  const Real* volume;
   Vec<D, Real>* velocity;
   Vec<D, Real>* acceleration;
 
   MFSD_HD ConditionSums operator()(Index k) const {
     ConditionSums s = ConditionSums::zero();
-    const Index i = particles[k];
+    Index i;
     Real value[3] = {Real(0), Real(0), Real(0)};
     int mask = 0;
-    if (!evaluate_components<D, Real>(component, reference_position[i], displacement[i], velocity[i], t, dt, dx, i,
-                                      value, mask, s.error) ||
-        !mask)
-      return s;
-    const Real mass = density * volume[i];
+    if (!sel.evaluate(k, velocity, i, value, mask, s.error)) return s;
+    const Real mass = sel.mass(i), dt = sel.dt;
     Vec<D, Real> f = Vec<D, Real>::zero();
     for (int a = 0; a < D; ++a) {
       if (!(mask & (1 << a))) continue;
@@ -174,35 +199,23 @@ struct LoadFunctor {
 
 template <int D, class Real>
 struct VelocityConditionFunctor {
-  const Index* particles;
-  ComponentValue<Real> component[3];
-  Real density;
-  Real t, dt, dx;  // t: evaluation time (t^n + dt)
-  const Vec<D, Real>* reference_position;
-  const Vec<D, Real>* displacement;
-  const Real* volume;
+  SelectedComponents<D, Real> sel;   // t = t^n + dt
   const Vec<D, Real>* acceleration;  // internal + loads, for v^n
   Vec<D, Real>* velocity;
 
   MFSD_HD ConditionSums operator()(Index k) const {
     ConditionSums s = ConditionSums::zero();
-    const Index i = particles[k];
+    Index i;
     Real value[3] = {Real(0), Real(0), Real(0)};
     int mask = 0;
-    if (!evaluate_components<D, Real>(component, reference_position[i], displacement[i], velocity[i], t, dt, dx, i,
-                                      value, mask, s.error) ||
-        !mask)
-      return s;
-    const Real mass = density * volume[i];
+    if (!sel.evaluate(k, velocity, i, value, mask, s.error)) return s;
+    const Real dt = sel.dt;
     Vec<D, Real> v = velocity[i];
     for (int a = 0; a < D; ++a) {
       if (!(mask & (1 << a))) continue;
-      if (dt > Real(0)) {
-        const Real v_old = v.v[a] - acceleration[i].v[a] * dt;
-        const double reaction = double(mass) * double(value[a] - v.v[a]) / double(dt);
-        s.force[a] = reaction;
-        s.power += reaction * 0.5 * (double(v_old) + double(value[a]));
-      }
+      if (dt > Real(0))
+        add_reaction(s, a, double(sel.mass(i)), double(v.v[a] - acceleration[i].v[a] * dt), double(v.v[a]),
+                     double(value[a]), double(dt));
       v.v[a] = value[a];
     }
     velocity[i] = v;
@@ -239,14 +252,11 @@ struct WallFunctor {
     const Vec<D, Real> v = velocity[i];
     const Real vn = dot(v, normal), vn_min = -Real(2) * gap / dt;
     if (!(vn < vn_min)) return s;
-    const Vec<D, Real> dv = normal * (vn_min - vn);
-    velocity[i] = v + dv;
+    const Vec<D, Real> v_new = v + normal * (vn_min - vn);
+    velocity[i] = v_new;
     const double m = double(density) * double(volume[i]);
-    const Vec<D, Real> v_old = v - acceleration[i] * dt;
-    for (int a = 0; a < D; ++a) {
-      s.force[a] = m * double(dv.v[a]) / double(dt);
-      s.power += s.force[a] * 0.5 * (double(v_old.v[a]) + double(v.v[a] + dv.v[a]));
-    }
+    for (int a = 0; a < D; ++a)
+      add_reaction(s, a, m, double(v.v[a] - acceleration[i].v[a] * dt), double(v.v[a]), double(v_new.v[a]), double(dt));
     return s;
   }
 };

@@ -36,9 +36,9 @@ struct DeformationRateFunctor {
   MFSD_HD void operator()(Index i) const { rate[i] = deformation_rate(pairs, velocity, correction[i], i); }
 };
 
-// The step's last pass over the particles, fused: dF/dt at the new velocity,
+// The step's last pass over the particles, fused: dF/dt at the updated velocity,
 // the second half step F += dt/2 dF/dt, u += dt/2 v (seed 000 eq. 37), and
-// each particle's time-step statistics of the new state (step_statistics.hpp),
+// each particle's time-step statistics of the updated state (step_statistics.hpp),
 // which the host combines with a reduction.
 template <int D, class Real>
 struct RateHalfStepFunctor {

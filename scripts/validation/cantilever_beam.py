@@ -65,18 +65,12 @@ FAST = {"velocity_conditions": json.dumps([{"name": "beam_bc", "body": "beam", "
 def run(dp, end_time, threads, fast=False, reuse=False):
     name = f"cantilever_beam_dx{dp * 1e3:g}mm"
     out = os.path.join(OUT, name)
-    extra = ["--threads", str(threads)] if threads else []
     sets = {"constants.dp": dp, "solver.end_time": end_time, "output.vtu": "false", "output.interval": 0.0025,
             "output.probe_interval": 0.0005, **(FAST if fast else {})}
     done = os.path.join(out, "timing.json")
-    if not (reuse and os.path.exists(done) and abs(m.read_json(done)["simulated_time"] - end_time) < 1e-9):
-        rc = m.run(CONFIG, sets, out, extra)
-        if rc != 0:
-            sys.exit(f"[mfsd] run {name} failed with exit code {rc}")
-    p = m.read_csv(os.path.join(out, "probes.csv"))
-    e = m.read_csv(os.path.join(out, "energies.csv"))
-    timing = m.read_json(os.path.join(out, "timing.json"))
-    run_commit = m.read_json(os.path.join(out, "run.json")).get("git_commit")
+    same = reuse and os.path.exists(done) and abs(m.read_json(done)["simulated_time"] - end_time) < 1e-9
+    p, e, timing = m.run_and_read(CONFIG, sets, out, threads, same)
+    run_commit = timing["mfsd_commit_of_the_run"]
     t, uy = p["time"], p["tip.displacement.y"]
     t_max, u_max = first_maximum(t, uy)
     balance = e["balance"]

@@ -14,7 +14,7 @@ The clamp is written as a velocity condition on `where: x0 <= 0` (same
 results as the seed's whole-body expressions, which cost 8 % more time).
 
 Writes docs/validation/cantilever_large_deformation.json and .png.
-Usage: scripts/validation/cantilever_large_deformation.py [--tmax T] [--threads N]
+Usage: scripts/validation/cantilever_large_deformation.py [--tmax T] [--threads N] [--reuse]
 """
 import argparse
 import json
@@ -67,18 +67,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tmax", type=float, default=0.02, help="load ramp time [s] (seed: 1)")
     ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--reuse", action="store_true", help="analyse the finished run in out/validation again")
     args = ap.parse_args()
     out = os.path.join(OUT, "cantilever_large_deformation")
-    extra = ["--threads", str(args.threads)] if args.threads else []
     sets = {"constants.Tmax": args.tmax, "output.vtu": "false",
             "velocity_conditions": json.dumps([{"name": "clamp", "body": "beam", "where": "x0 <= 0",
                                                 "x": 0, "y": 0, "z": 0}])}
-    rc = m.run(CONFIG, sets, out, extra)
-    if rc != 0:
-        sys.exit(f"[mfsd] run failed with exit code {rc}")
-    p = m.read_csv(os.path.join(out, "probes.csv"))
-    e = m.read_csv(os.path.join(out, "energies.csv"))
-    timing = m.read_json(os.path.join(out, "timing.json"))
+    p, e, timing = m.run_and_read(CONFIG, sets, out, args.threads, args.reuse)
     t, ux, uz = p["time"], p["tip.displacement.x"], p["tip.displacement.z"]
     hold = [k for k, tk in enumerate(t) if tk >= args.tmax]
     mean = lambda v: sum(v[k] for k in hold) / len(hold)  # noqa: E731
@@ -89,7 +84,7 @@ def main():
            + (f" --tmax {args.tmax}" if args.tmax != 0.02 else ""), "machine": m.machine(), "tmax": args.tmax,
            "load_parameter": alpha, "elastica": {"ux_over_L": ex, "uz_over_L": -ez, "tip_angle_rad": tip_angle},
            "particles": timing["particles"], "steps": timing["steps"], "wall_seconds": timing["wall_seconds"],
-           "mfsd_commit_of_the_run": m.read_json(os.path.join(out, "run.json")).get("git_commit"),
+           "mfsd_commit_of_the_run": timing["mfsd_commit_of_the_run"],
            "particle_steps_per_second": timing["particle_steps_per_second"],
            "hold_mean": {"ux_over_L": mean(ux) / L, "uz_over_L": mean(uz) / L},
            "hold_range": {"uz_over_L": [min(uz[k] for k in hold) / L, max(uz[k] for k in hold) / L]},

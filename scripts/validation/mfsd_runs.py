@@ -40,6 +40,19 @@ def run(config, sets, outdir, extra=(), quiet=True):
     return subprocess.run(cmd).returncode
 
 
+def run_and_read(config, sets, outdir, threads=0, reuse=False):
+    """Runs a scene (unless `reuse` and outdir already holds a finished run)
+    and returns (probes.csv, energies.csv, timing.json) of it; timing gets
+    the commit of the binary that made the run (from run.json)."""
+    if not (reuse and os.path.exists(os.path.join(outdir, "timing.json"))):
+        rc = run(config, sets, outdir, ["--threads", str(threads)] if threads else [])
+        if rc != 0:
+            sys.exit(f"[mfsd] run {outdir} failed with exit code {rc}")
+    timing = read_json(os.path.join(outdir, "timing.json"))
+    timing["mfsd_commit_of_the_run"] = read_json(os.path.join(outdir, "run.json")).get("git_commit")
+    return read_csv(os.path.join(outdir, "probes.csv")), read_csv(os.path.join(outdir, "energies.csv")), timing
+
+
 def read_csv(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))

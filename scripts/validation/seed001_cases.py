@@ -30,15 +30,7 @@ REUSE = False  # --reuse: analyse the finished run in out/validation again
 
 
 def run(config, name, sets, threads):
-    out = os.path.join(OUT, name)
-    extra = ["--threads", str(threads)] if threads else []
-    if not (REUSE and os.path.exists(os.path.join(out, "timing.json"))):
-        rc = m.run(config, {"output.vtu": "false", **sets}, out, extra)
-        if rc != 0:
-            sys.exit(f"[mfsd] run {name} failed with exit code {rc}")
-    timing = m.read_json(os.path.join(out, "timing.json"))
-    timing["mfsd_commit_of_the_run"] = m.read_json(os.path.join(out, "run.json")).get("git_commit")
-    return m.read_csv(os.path.join(out, "probes.csv")), m.read_csv(os.path.join(out, "energies.csv")), timing
+    return m.run_and_read(config, {"output.vtu": "false", **sets}, os.path.join(OUT, name), threads, REUSE)
 
 
 def energy_panel(ax, e):

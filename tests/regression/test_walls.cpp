@@ -19,10 +19,9 @@ struct WallRun {
 
 // free_block_2d moves at +0.3 m/s towards a wall at x = 0.101 (normal -x).
 WallRun throw_at_wall(double cfl) {
-  const SceneDocument doc = test::load_config(
-      "scenes/free_block_2d.json",
-      {R"J(walls=[{"name": "stop", "point": [0.101, 0], "normal": [-1, 0]}])J", "solver.hourglass=genog",
-       "solver.cfl=" + std::to_string(cfl)});
+  const SceneDocument doc = test::load_config("scenes/free_block_2d.json",
+                                              {R"J(walls=[{"name": "stop", "point": [0.101, 0], "normal": [-1, 0]}])J",
+                                               "solver.hourglass=genog", "solver.cfl=" + std::to_string(cfl)});
   const InitialParticles particles = generate_particles(doc.scene);
   auto solver = make_solver(doc.scene, particles, SolverOptions{});
   solver->initialize();
