@@ -53,6 +53,8 @@ Snapshot rigid_body_snapshot(const Scene& scene, const std::vector<RigidBodyMoti
       s.von_mises.push_back(0);
       s.jacobian.push_back(1);
       s.hourglass.push_back(0);
+      s.von_mises_strain.push_back(0);
+      if (!s.plastic_strain.empty()) s.plastic_strain.push_back(0);
     }
   return s;
 }

@@ -22,4 +22,7 @@ inline constexpr const char* genog_neighbor_record = "genog_neighbor_record";  /
 inline constexpr const char* hourglass_indicator = "hourglass_indicator";
 inline constexpr const char* von_mises = "von_mises";
 inline constexpr const char* jacobian = "jacobian";
+inline constexpr const char* von_mises_strain = "von_mises_strain";
+inline constexpr const char* plastic_state = "plastic_state";    // plastic bodies: C_p^{-1}, alpha, work
+inline constexpr const char* plastic_strain = "plastic_strain";  // output copy of alpha
 }  // namespace mfsd::field

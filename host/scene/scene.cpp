@@ -3,7 +3,15 @@
 namespace mfsd {
 
 const char* to_string(MaterialModel m) {
-  return m == MaterialModel::neo_hookean ? "neo_hookean" : "saint_venant_kirchhoff";
+  switch (m) {
+    case MaterialModel::neo_hookean:
+      return "neo_hookean";
+    case MaterialModel::saint_venant_kirchhoff:
+      return "saint_venant_kirchhoff";
+    case MaterialModel::j2:
+      return "j2";
+  }
+  return "?";
 }
 const char* to_string(HourglassControl h) {
   switch (h) {

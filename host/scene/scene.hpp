@@ -12,7 +12,8 @@
 
 namespace mfsd {
 
-enum class MaterialModel { neo_hookean, saint_venant_kirchhoff };
+enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2 };
+enum class HardeningLaw { linear, saturation };
 enum class HourglassControl { none, laplacian, genog };
 enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
 enum class DampingForm { isotropic, split };  // one wave speed | c0 normal, c_s shear
@@ -23,6 +24,15 @@ struct MaterialSpec {
   double density = 0;
   double youngs_modulus = 0;
   double poisson_ratio = 0;
+  // j2 (neo-Hookean elasticity on b_e, seed 000 section 3.2):
+  // sigma_Y(a) = yield_stress + hardening_modulus a
+  //              [+ (saturation_stress - yield_stress)(1 - exp(-saturation_exponent a))]
+  HardeningLaw hardening = HardeningLaw::linear;
+  double yield_stress = 0;
+  double hardening_modulus = 0;
+  double saturation_stress = 0;
+  double saturation_exponent = 0;
+  bool plastic() const { return model == MaterialModel::j2; }
 };
 
 struct BodySpec {
@@ -122,6 +132,10 @@ struct SolverSpec {
   double correction_floor = 0.1;
   bool reorder = true;
   Precision precision = Precision::double_precision;
+  // Time step from the Lagrangian wave speed c0 max|F^{-1}| (theory.md);
+  // default: on when some body is plastic.
+  bool deformed_time_step = false;
+  bool deformed_time_step_given = false;
 };
 
 struct OutputSpec {

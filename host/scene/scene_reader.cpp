@@ -36,11 +36,25 @@ void line_column(const std::string& text, size_t byte, size_t& line, size_t& col
 
 MaterialSpec read_material(JsonNode m) {
   MaterialSpec spec;
-  const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff"});
-  spec.model = model == "neo_hookean" ? MaterialModel::neo_hookean : MaterialModel::saint_venant_kirchhoff;
+  const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2"});
+  spec.model = model == "neo_hookean" ? MaterialModel::neo_hookean
+                                      : (model == "j2" ? MaterialModel::j2 : MaterialModel::saint_venant_kirchhoff);
   spec.density = m.number("density", Range::positive());
   spec.youngs_modulus = m.number("youngs_modulus", Range::positive());
   spec.poisson_ratio = m.number("poisson_ratio", Range{-1.0, 0.5, true, true, "a number in (-1, 0.5)"});
+  if (spec.plastic()) {
+    spec.yield_stress = m.number("yield_stress", Range::positive());
+    spec.hardening_modulus = m.number("hardening_modulus", 0.0, Range::non_negative());
+    if (m.has("saturation_stress") || m.has("saturation_exponent")) {
+      spec.hardening = HardeningLaw::saturation;
+      spec.saturation_stress = m.number("saturation_stress", Range::positive());
+      spec.saturation_exponent = m.number("saturation_exponent", Range::positive());
+      if (spec.saturation_stress < spec.yield_stress)
+        throw SceneError(
+            m.key_path("saturation_stress"), std::to_string(spec.saturation_stress),
+            "a value >= yield_stress (" + std::to_string(spec.yield_stress) + "): the saturation law would soften");
+    }
+  }
   m.finish();
   return spec;
 }
@@ -65,6 +79,10 @@ SolverSpec read_solver(JsonNode s, int dim) {
   spec.correction_in_force = s.boolean("kernel_correction_in_force", spec.hourglass != HourglassControl::laplacian);
   spec.correction_floor = s.number("correction_floor", 0.1, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
   spec.reorder = s.boolean("reorder", true);
+  if (s.has("deformed_time_step")) {
+    spec.deformed_time_step = s.boolean("deformed_time_step", false);
+    spec.deformed_time_step_given = true;
+  }
   spec.zeta = s.number("zeta", 1.07, Range::positive());
   {
     JsonNode g = s.object_or_empty("genog");
@@ -208,6 +226,10 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     body.spacing = node.number("spacing", Range::positive());
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"));
+    if (body.material.plastic() && scene.solver.hourglass == HourglassControl::laplacian)
+      throw SceneError(node.key_path("material") + "/model", "\"j2\" with solver.hourglass \"laplacian\"",
+                       "an elastic model, or hourglass \"genog\" or \"none\": the Laplacian form of seed 003 "
+                       "is defined for elastic bodies only");
     JsonNode v = node.object_or_empty("initial_velocity");
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < dim; ++a) body.initial_velocity[size_t(a)] = v.expression(axes[a], "0");
@@ -231,6 +253,9 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     node.finish();
     scene.clamps.push_back(clamp);
   }
+
+  if (!scene.solver.deformed_time_step_given)
+    for (const auto& b : scene.bodies) scene.solver.deformed_time_step |= b.material.plastic();
 
   read_rigid_bodies(root, scene);
   read_conditions(root, scene, names, boundary_names);

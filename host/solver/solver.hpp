@@ -22,12 +22,14 @@ struct Snapshot {
   std::vector<unsigned char> constrained;
   std::vector<double> position, displacement, velocity;  // 3 n
   std::vector<double> von_mises, jacobian, hourglass;    // n
+  std::vector<double> von_mises_strain;                  // n
+  std::vector<double> plastic_strain;                    // n when some body is plastic, else empty
 };
 
 // Energies of one body (J; per metre of depth in 2-D). Work done on the body
 // by its loads (external) and by its velocity conditions and clamps
-// (boundary), accumulated over the run. Plastic and fracture dissipation are
-// zero until those models exist.
+// (boundary), accumulated over the run. Plastic: the plastic work of J2
+// bodies (j2_plastic.hpp); fracture dissipation is zero until that model exists.
 struct BodyEnergy {
   double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0;
   // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc.

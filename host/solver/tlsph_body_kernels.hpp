@@ -11,6 +11,7 @@
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/solver/tlsph_views.hpp"
+#include "kernels/materials/j2_plastic.hpp"
 #include "kernels/materials/neo_hookean.hpp"
 #include "kernels/materials/saint_venant_kirchhoff.hpp"
 #include "kernels/tlsph/acceleration.hpp"
@@ -63,7 +64,8 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
                                                   v.shear_coefficient,
                                                   v.shear_stress,
                                                   v.inverse_F,
-                                                  v.neighbor_record};
+                                                  v.neighbor_record,
+                                                  v.plastic_state};
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
@@ -89,14 +91,15 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
   void stress_observables(const TlsphViews<D, Real>& v) const override {
     parallel_for<B>(
         s_.range.begin, s_.range.end,
-        StressObservablesFunctor<D, Real, Material>{material_, v.deformation_gradient, v.von_mises, v.jacobian});
+        StressObservablesFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state, v.von_mises,
+                                                    v.jacobian, v.von_mises_strain, v.plastic_strain});
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
-    return transform_reduce<B>(
-        s_.range.begin, s_.range.end,
-        EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.velocity, v.volume, Real(s_.density)},
-        EnergySums{0.0, 0.0, {0.0, 0.0, 0.0}}, EnergySumsPlus{});
+    return transform_reduce<B>(s_.range.begin, s_.range.end,
+                               EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state,
+                                                                v.velocity, v.volume, Real(s_.density)},
+                               EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}}, EnergySumsPlus{});
   }
 
  private:

@@ -40,6 +40,13 @@
 
 namespace mfsd {
 
+// Initial plastic state: C_p^{-1} = I, alpha = 0, no plastic work.
+template <class Real>
+struct InitialPlasticStateFunctor {
+  J2State<Real>* state;
+  MFSD_HD void operator()(Index i) const { state[i] = J2State<Real>::initial(); }
+};
+
 // Sets F = I.
 template <int D, class Real>
 struct IdentityFunctor {
@@ -164,8 +171,15 @@ class TlsphSolver final : public Solver {
     particles_.template add<Real>(field::hourglass_indicator);
     particles_.template add<Real>(field::von_mises);
     particles_.template add<Real>(field::jacobian);
+    particles_.template add<Real>(field::von_mises_strain);
+    // Plastic state over the whole set when some body is plastic (bodies are ranges of one set).
+    if (any_plastic()) {
+      particles_.template add<J2State<Real>>(field::plastic_state);
+      particles_.template add<Real>(field::plastic_strain);
+    }
     bind_views();
     parallel_for<B>(n, IdentityFunctor<D, Real>{v_.deformation_gradient});
+    if (v_.plastic_state) parallel_for<B>(n, InitialPlasticStateFunctor<Real>{v_.plastic_state});
 
     for (size_t b = 0; b < scene_.bodies.size(); ++b) bodies_.push_back(make_body_kernels(b));
 
@@ -248,7 +262,8 @@ class TlsphSolver final : public Solver {
       RateHalfStepFunctor<D, Real> f{
           v_.pairs,        v_.velocity, v_.correction,       v_.deformation_rate, v_.deformation_gradient,
           v_.displacement, half_dt,     statistics_functor()};
-      stats = transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), n}, StepStatisticsCombine<Real>{});
+      stats = transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), n},
+                                  StepStatisticsCombine<Real>{});
     });
     run("time_step", [&] {
       time_ += dt;
@@ -292,6 +307,9 @@ class TlsphSolver final : public Solver {
     s.von_mises = to_double(to_host<B>(particles_.template buffer<Real>(field::von_mises)));
     s.jacobian = to_double(to_host<B>(particles_.template buffer<Real>(field::jacobian)));
     s.hourglass = to_double(to_host<B>(particles_.template buffer<Real>(field::hourglass_indicator)));
+    s.von_mises_strain = to_double(to_host<B>(particles_.template buffer<Real>(field::von_mises_strain)));
+    if (v_.plastic_strain)
+      s.plastic_strain = to_double(to_host<B>(particles_.template buffer<Real>(field::plastic_strain)));
     return s;
   }
 
@@ -305,6 +323,7 @@ class TlsphSolver final : public Solver {
       BodyEnergy be;
       be.kinetic = s.kinetic;
       be.strain = s.strain;
+      be.plastic = s.plastic;
       be.external_work = conditions_.external_work(b);
       be.boundary_work = conditions_.boundary_work(b);
       e.bodies.push_back(be);
@@ -443,6 +462,10 @@ class TlsphSolver final : public Solver {
     v_.hourglass_indicator = particles_.template get<Real>(field::hourglass_indicator);
     v_.von_mises = particles_.template get<Real>(field::von_mises);
     v_.jacobian = particles_.template get<Real>(field::jacobian);
+    v_.von_mises_strain = particles_.template get<Real>(field::von_mises_strain);
+    v_.plastic_state =
+        particles_.has(field::plastic_state) ? particles_.template get<J2State<Real>>(field::plastic_state) : nullptr;
+    v_.plastic_strain = opt_real(field::plastic_strain);
   }
 
   std::unique_ptr<BodyKernels<B, D, Real>> make_body_kernels(size_t b) {
@@ -461,8 +484,21 @@ class TlsphSolver final : public Solver {
     const double base = s.damping_factor * spec.material.density * p.h * 0.5;
     k.damping_normal = base * p.c0;
     k.damping_shear = base * (s.damping_form == DampingForm::split ? p.c_shear : p.c0);
-    if (spec.material.model == MaterialModel::neo_hookean)
-      return make_variant(NeoHookean<D, Real>{Real(p.K), Real(p.G)}, k);
+    const MaterialSpec& m = spec.material;
+    if (m.model == MaterialModel::j2) {
+      if (m.hardening == HardeningLaw::saturation)
+        return make_variant(
+            J2Plastic<D, Real, SaturationHardening<Real>>{Real(p.K),
+                                                          Real(p.G),
+                                                          {Real(m.yield_stress), Real(m.hardening_modulus),
+                                                           Real(m.saturation_stress), Real(m.saturation_exponent)}},
+            k);
+      return make_variant(
+          J2Plastic<D, Real, LinearHardening<Real>>{
+              Real(p.K), Real(p.G), {Real(m.yield_stress), Real(m.hardening_modulus)}},
+          k);
+    }
+    if (m.model == MaterialModel::neo_hookean) return make_variant(NeoHookean<D, Real>{Real(p.K), Real(p.G)}, k);
     return make_variant(SaintVenantKirchhoff<D, Real>{Real(p.K), Real(p.G), Real(p.lambda)}, k);
   }
 
@@ -472,16 +508,32 @@ class TlsphSolver final : public Solver {
       case HourglassControl::none:
         return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassNone>>(m, k);
       case HourglassControl::laplacian:
-        return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassLaplacian>>(m, k);
+        if constexpr (IsPlastic<Material>::value)
+          throw std::logic_error("the Laplacian hourglass form is defined for elastic bodies only");  // scene_reader
+        else
+          return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassLaplacian>>(m, k);
       case HourglassControl::genog:
         return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassGenog>>(m, k);
     }
     throw std::logic_error("unknown hourglass variant");
   }
 
+  bool any_plastic() const {
+    for (const auto& b : scene_.bodies)
+      if (b.material.plastic()) return true;
+    return false;
+  }
+
   StepStatisticsFunctor<D, Real> statistics_functor() const {
     const Index n = particles_.size();
-    StepStatisticsFunctor<D, Real> f{v_.reference_position, v_.displacement, v_.velocity, v_.acceleration, {}, {}, n};
+    StepStatisticsFunctor<D, Real> f{v_.reference_position,
+                                     v_.displacement,
+                                     v_.velocity,
+                                     v_.acceleration,
+                                     scene_.solver.deformed_time_step ? v_.deformation_gradient : nullptr,
+                                     {},
+                                     {},
+                                     n};
     for (int a = 0; a < D; ++a) {
       f.lower.v[a] = Real(scene_.bounds.min[a]);
       f.upper.v[a] = Real(scene_.bounds.max[a]);
@@ -491,17 +543,20 @@ class TlsphSolver final : public Solver {
 
   StepStatistics<Real> statistics() {
     const Index n = particles_.size();
-    return transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), n},
+    return transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), Real(0), n},
                                StepStatisticsCombine<Real>{});
   }
 
-  // dt = CFL min(h/(c0 + |v|max), sqrt(h/|a|max)) (seed 000 eq. 38).
+  // dt = CFL min(h/(c0 + |v|max), sqrt(h/|a|max)) (seed 000 eq. 38); with
+  // solver.deformed_time_step, c0 is scaled by s = max(1, max_i |F_i^{-1}|_2),
+  // the Lagrangian wave speed where the body is compressed most (theory.md).
   void update_time_step(const StepStatistics<Real>& s) {
     const double vmax = std::sqrt(double(s.max_speed2));
     const double amax = std::sqrt(double(s.max_acceleration2));
+    const double stretch = std::max(1.0, double(s.max_inverse_stretch));
     double dt = std::numeric_limits<double>::infinity();
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
-      dt = std::min(dt, props(b).h / (props(b).c0 + vmax));
+      dt = std::min(dt, props(b).h / (props(b).c0 * stretch + vmax));
       if (amax > 0) dt = std::min(dt, std::sqrt(props(b).h / amax));
     }
     dt_next_ = scene_.solver.cfl * dt;

@@ -2,6 +2,7 @@
 // after set-up (buffers never move afterwards) and handed to the functors.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/j2_plastic.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
 
@@ -24,8 +25,11 @@ struct TlsphViews {
   Mat<D, Real>* inverse_F;                     // genog bodies, and scratch for the indicator
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU backend, else null
   Real* hourglass_indicator;
+  J2State<Real>* plastic_state;  // when some body is plastic, else null
   Real* von_mises;
   Real* jacobian;
+  Real* von_mises_strain;
+  Real* plastic_strain;  // when some body is plastic, else null
 };
 
 }  // namespace mfsd

@@ -2,7 +2,7 @@
 // tensor b_bar_e (seed 000 Appendix A, Algorithm 1; formulations.md section 2:
 // the return mapping of Simo, with b_bar_e in place of b in the neo-Hookean
 // deviatoric stress tau_dev = G dev(b_bar_e)). One material point, one step;
-// the caller (the stress stage of a plastic body, to come) forms the trial
+// the caller (j2_plastic.hpp: C_p^{-1} is the state there) forms the trial
 //   b_bar_e^trial = f_bar b_bar_e^n f_bar^T,  f_bar = J_f^{-1/3} F^{n+1} (F^n)^{-1},
 // and keeps b_bar_e and the equivalent plastic strain alpha per particle.
 // Always 3 x 3: plane-strain bodies embed F with F_33 = 1 and keep the
@@ -23,7 +23,6 @@
 // exceeds the plastic log strain by a fraction of order the elastic strain
 // (0.56 % in uniaxial tension to a stretch of 1.3 with tau/E = 0.8 %,
 // tests/unit/test_j2_return_mapping.cpp); an exponential-map return would not.
-// Not yet used by a body: the stress stage of plastic bodies is issue 5.
 #pragma once
 #include "kernels/core/mat.hpp"
 

@@ -1,6 +1,7 @@
 // Output quantities: von Mises stress, J, energies.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/j2_plastic.hpp"
 
 namespace mfsd {
 
@@ -19,18 +20,57 @@ MFSD_HD inline Real von_mises(const Mat<2, Real>& sigma) {
   return math::sqrt(math::max(xx * xx + yy * yy - xx * yy + Real(3) * xy * xy, Real(0)));
 }
 
+// Von Mises strain as the authors' code reports it: |dev E| of the
+// Green-Lagrange strain E = (F^T F - I)/2, with E_zz = 0 in 2-D, i.e.
+// sqrt(1/3 sum_(a<b) (E_aa - E_bb)^2 + 2 sum_(a<b) E_ab^2).
+template <int D, class Real>
+MFSD_HD inline Real von_mises_strain(const Mat<D, Real>& F) {
+  Mat<3, Real> E = Mat<3, Real>::zero();
+  const Mat<D, Real> C = transpose(F) * F;
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b) E.m[a][b] = Real(0.5) * (C.m[a][b] - (a == b ? Real(1) : Real(0)));
+  return frobenius_norm(deviator(E));
+}
+
+template <int D, class Real, class Material>
+MFSD_HD inline Mat<D, Real> kirchhoff_of(const Material& m, const Mat<D, Real>& F, const J2State<Real>* state,
+                                         Index i) {
+  if constexpr (IsPlastic<Material>::value)
+    return m.kirchhoff(F, state[i]);
+  else
+    return m.kirchhoff(F);
+}
+
+template <int D, class Real, class Material>
+MFSD_HD inline Real strain_energy_of(const Material& m, const Mat<D, Real>& F, const J2State<Real>* state, Index i) {
+  if constexpr (IsPlastic<Material>::value)
+    return m.strain_energy_density(F, state[i]);
+  else
+    return m.strain_energy_density(F);
+}
+
 template <int D, class Real, class Material>
 struct StressObservablesFunctor {
   Material material;
   const Mat<D, Real>* deformation_gradient;
+  const J2State<Real>* plastic_state;  // plastic materials, else null
   Real* von_mises_stress;
   Real* jacobian;
+  Real* strain;          // von Mises strain
+  Real* plastic_strain;  // null unless some body is plastic
 
   MFSD_HD void operator()(Index i) const {
     const Mat<D, Real> F = deformation_gradient[i];
     const Real J = det(F);
-    von_mises_stress[i] = von_mises(material.kirchhoff(F) * (Real(1) / J));
+    von_mises_stress[i] = von_mises(kirchhoff_of(material, F, plastic_state, i) * (Real(1) / J));
     jacobian[i] = J;
+    strain[i] = von_mises_strain(F);
+    if (plastic_strain) {
+      if constexpr (IsPlastic<Material>::value)
+        plastic_strain[i] = plastic_state[i].alpha;
+      else
+        plastic_strain[i] = Real(0);
+    }
   }
 };
 
@@ -38,6 +78,7 @@ struct StressObservablesFunctor {
 struct EnergySums {
   double kinetic;
   double strain;
+  double plastic;  // plastic work
   double momentum[3];
 };
 
@@ -45,15 +86,17 @@ struct EnergySumsPlus {
   MFSD_HD EnergySums operator()(const EnergySums& a, const EnergySums& b) const {
     return EnergySums{a.kinetic + b.kinetic,
                       a.strain + b.strain,
+                      a.plastic + b.plastic,
                       {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]}};
   }
 };
 
-// Kinetic 1/2 m v^2, strain energy V0 W(F) and momentum m v of particle i (accumulated in double).
+// Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work and momentum m v of particle i (accumulated in double).
 template <int D, class Real, class Material>
 struct EnergyFunctor {
   Material material;
   const Mat<D, Real>* deformation_gradient;
+  const J2State<Real>* plastic_state;  // plastic materials, else null
   const Vec<D, Real>* velocity;
   const Real* volume;
   Real density;
@@ -62,8 +105,11 @@ struct EnergyFunctor {
     const double V0 = double(volume[i]);
     const double m = double(density) * V0;
     const Vec<D, Real> v = velocity[i];
+    double plastic = 0.0;
+    if constexpr (IsPlastic<Material>::value) plastic = V0 * double(plastic_state[i].work);
     EnergySums s{0.5 * m * double(squared_norm(v)),
-                 V0 * double(material.strain_energy_density(deformation_gradient[i])),
+                 V0 * double(strain_energy_of(material, deformation_gradient[i], plastic_state, i)),
+                 plastic,
                  {0.0, 0.0, 0.0}};
     for (int a = 0; a < D; ++a) s.momentum[a] = m * double(v.v[a]);
     return s;

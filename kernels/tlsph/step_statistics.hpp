@@ -1,7 +1,9 @@
 // Per-step reduction: the maxima the time step needs (seed 000 eq. 38) and a
 // health check (non-finite values, particles outside the scene's bounds),
-// in one pass over the particles.
+// in one pass over the particles. With the deformed-configuration time step
+// (solver.deformed_time_step) also the largest |F^{-1}| (inverse_stretch.hpp).
 #pragma once
+#include "kernels/core/inverse_stretch.hpp"
 #include "kernels/core/vec.hpp"
 
 namespace mfsd {
@@ -10,15 +12,16 @@ template <class Real>
 struct StepStatistics {
   Real max_speed2;
   Real max_acceleration2;
-  Index first_bad;  // smallest index of a non-finite or escaped particle, or n
+  Real max_inverse_stretch;  // max |F^{-1}|_2, 0 unless requested
+  Index first_bad;           // smallest index of a non-finite or escaped particle, or n
 };
 
 template <class Real>
 struct StepStatisticsCombine {
   MFSD_HD StepStatistics<Real> operator()(const StepStatistics<Real>& a, const StepStatistics<Real>& b) const {
-    return StepStatistics<Real>{math::max(a.max_speed2, b.max_speed2),
-                                math::max(a.max_acceleration2, b.max_acceleration2),
-                                math::min(a.first_bad, b.first_bad)};
+    return StepStatistics<Real>{
+        math::max(a.max_speed2, b.max_speed2), math::max(a.max_acceleration2, b.max_acceleration2),
+        math::max(a.max_inverse_stretch, b.max_inverse_stretch), math::min(a.first_bad, b.first_bad)};
   }
 };
 
@@ -28,7 +31,8 @@ struct StepStatisticsFunctor {
   const Vec<D, Real>* displacement;
   const Vec<D, Real>* velocity;
   const Vec<D, Real>* acceleration;
-  Vec<D, Real> lower, upper;  // scene bounds
+  const Mat<D, Real>* deformation_gradient;  // null: no inverse stretch
+  Vec<D, Real> lower, upper;                 // scene bounds
   Index n;
 
   MFSD_HD StepStatistics<Real> operator()(Index i) const {
@@ -37,7 +41,10 @@ struct StepStatisticsFunctor {
     const Real v2 = squared_norm(v), a2 = squared_norm(a);
     bool ok = math::isfinite(v2) && math::isfinite(a2);
     for (int k = 0; k < D; ++k) ok = ok && x.v[k] >= lower.v[k] && x.v[k] <= upper.v[k];  // false for NaN
-    return StepStatistics<Real>{ok ? v2 : Real(0), ok ? a2 : Real(0), ok ? n : i};
+    Real s = Real(0);
+    if (deformation_gradient) s = inverse_stretch(deformation_gradient[i]);
+    ok = ok && math::isfinite(s);
+    return StepStatistics<Real>{ok ? v2 : Real(0), ok ? a2 : Real(0), ok ? s : Real(0), ok ? n : i};
   }
 };
 

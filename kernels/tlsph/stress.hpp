@@ -11,12 +11,21 @@
 //               tau_r = tau_vol I - 1/d c tr(b) I + tau_d        (seed 000 eq. 25)
 //               S = c b F^{-T} B0 = c F B0,  F^{-1}              (seed 000 eq. 32)
 //               stored as Q = M + S and S (acceleration.hpp).
+// Plastic materials (j2_plastic.hpp) first run the return mapping at the half
+// step's F (seed 000 Appendix A: the plastic algorithm at n + 1/2) and put the
+// elastic b_e in place of b (seed 000 section 3.2):
+//   none      : tau = tau_vol I + G dev(b_bar_e) + tau_d
+//   genog     : tau_r = tau_vol I - G tr(b_bar_e)/3 I + tau_d,
+//               S = c b_e F^{-T} B0 = G b_bar_e F^{-T} B0  (c = |b_e|^{-1/3} G, eq. 25)
+// (3 x 3 tensors, in-plane blocks in plane strain). The Laplacian form of
+// seed 003 is defined for elastic bodies only; the solver refuses the pair.
 // B0 is symmetric, so P B0^T = P B0. With correction_in_force = false, B0 is
 // left out of the force sums (only dF/dt uses it), as in the authors' code.
 #pragma once
 #include <type_traits>
 
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/j2_plastic.hpp"
 #include "kernels/tlsph/damping.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/hourglass.hpp"
@@ -40,6 +49,11 @@ struct StressFunctor {
   Mat<D, Real>* shear_stress;                  // S (genog)
   Mat<D, Real>* inverse_F;                     // F^{-1} (genog)
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU, else null
+  J2State<Real>* plastic_state;                // plastic materials, else null
+
+  static constexpr bool plastic = IsPlastic<Material>::value;
+  static_assert(!(plastic && std::is_same<Hourglass, HourglassLaplacian>::value),
+                "the Laplacian hourglass form is defined for elastic bodies only (seed 003)");
 
   MFSD_HD void operator()(Index i) const {
     const Mat<D, Real> dF = rate[i];
@@ -50,7 +64,23 @@ struct StressFunctor {
     const Mat<D, Real> tau_d = damping.stress(F, dF);
     Mat<D, Real> tau;
     [[maybe_unused]] Mat<D, Real> S;
-    if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
+    if constexpr (plastic) {
+      J2State<Real> state = plastic_state[i];
+      const J2Stress<Real> p = material.update(F, state);  // Algorithm 1 at n + 1/2
+      plastic_state[i] = state;
+      const Mat<D, Real> be = leading_block<D>(p.be_bar);
+      tau = tau_d;
+      if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
+        tau += be * material.G;
+        tau.add_diagonal(p.volumetric - material.G * trace(p.be_bar) / Real(3));  // tau_vol + G dev(b_bar_e)
+      } else {
+        tau.add_diagonal(p.volumetric - material.G * trace(p.be_bar) / Real(3));  // tau_r
+        S = mul_transposed(be * material.G, F_inv);                               // G b_bar_e F^{-T}
+        if (correction_in_force) S = S * correction[i];
+        shear_stress[i] = S;
+        if (!neighbor_record) inverse_F[i] = F_inv;
+      }
+    } else if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
       tau = material.kirchhoff(F) + tau_d;
     } else {
       const Real J = det(F);

@@ -192,6 +192,21 @@ TEST_F(Cli, PoissonRatioOutOfRange) {
                      "/bodies/0/material/poisson_ratio: got 0.5; expected a number in (-1, 0.5)");
 }
 
+TEST_F(Cli, BadPlasticMaterials) {
+  const std::string nh = R"("model": "neo_hookean")";
+  expect_input_error("run " + scene(nh, R"("model": "j2")") + " -o " + out(),
+                     "/bodies/0/material/yield_stress: got nothing; expected this key (it is required)");
+  expect_input_error(
+      "run " + scene(nh, R"("model": "j2", "yield_stress": 2e4, "saturation_stress": 1e4, "saturation_exponent": 5)") +
+          " -o " + out(),
+      "/bodies/0/material/saturation_stress: got 10000.000000; expected a value >= yield_stress");
+  expect_input_error("run " + scene(nh, R"("model": "j2", "yield_stress": 2e4)") + " -o " + out() +
+                         " --set solver.hourglass=laplacian",
+                     "the Laplacian form of seed 003 is defined for elastic bodies only");
+  expect_input_error("run " + scene(nh, R"("model": "neo_hookean", "yield_stress": 2e4)") + " -o " + out(),
+                     "/bodies/0/material/yield_stress: got an unknown key");
+}
+
 TEST_F(Cli, NonPositiveDensityAndSpacing) {
   expect_input_error("run " + scene("\"density\": 1000", "\"density\": 0") + " -o " + out(),
                      "/bodies/0/material/density: got 0; expected a positive number");

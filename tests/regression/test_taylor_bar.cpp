@@ -1,0 +1,89 @@
+// Taylor bars (configs/taylor_bar_*.json, seed 000 section 5.5) at CI
+// resolutions: a J2 bar thrown at a rigid wall. The energy balance closes
+// (kinetic + stored + plastic work - wall work, hourglass `none` without
+// damping), the deformed-configuration time step is what keeps the impact
+// stable at CFL 0.6, and the final shape of the round aluminium bar is the
+// recorded one (docs/validation.md has the resolutions of seed 000 Table 6).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "host/solver/numerical_failure.hpp"
+#include "scene_runner.hpp"
+
+using namespace mfsd;
+
+namespace {
+
+struct BarShape {
+  double length = 0, radius = 0;  // largest particle-centre height and distance from the axis
+};
+
+BarShape final_shape(Solver& s, int dim) {
+  const Snapshot snap = s.snapshot();
+  BarShape r;
+  for (size_t i = 0; i < snap.n; ++i) {
+    const double* x = &snap.position[3 * i];
+    r.length = std::max(r.length, x[dim - 1]);
+    r.radius = std::max(r.radius, dim == 3 ? std::hypot(x[0], x[1]) : std::abs(x[0]));
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST(TaylorBar, EnergyBalanceClosesWithPlasticWork) {
+  // 2-D copper bar, H/dp = 10, 227 m/s, 40 us. Standard TLSPH without damping
+  // is conservative when B0 is in the force sums (the force is then the
+  // gradient of the discrete stored energy), so the balance measures the
+  // plastic-work bookkeeping. Measured largest drift: 7.3e-3, 1.7e-3, 5.2e-4 of
+  // the initial energy at CFL 0.6, 0.3, 0.15 (second order in dt). Without B0
+  // in the force sums, as the scene has it, the drift is 8 % at CFL 0.6.
+  auto run = [](double cfl, BodyEnergy& last) {
+    test::Trace t = test::run_config("taylor_bar_2d.json",
+                                     {"constants.H_over_dp=10", "solver.hourglass=none", "solver.damping.factor=0",
+                                      "solver.kernel_correction_in_force=true", "solver.end_time=4e-5",
+                                      "solver.cfl=" + std::to_string(cfl)},
+                                     Precision::double_precision, 0, 10);
+    const double E0 = t.energies.front().bodies[0].balance();
+    double drift = 0;
+    for (const auto& e : t.energies) drift = std::max(drift, std::abs(e.bodies[0].balance() - E0));
+    last = t.energies.back().bodies[0];
+    EXPECT_NEAR(E0, 0.5 * 8930 * 0.006 * 0.03 * 227.0 * 227.0, 1e-6 * E0);  // kinetic energy per metre of depth
+    return drift / E0;
+  };
+  BodyEnergy a, b;
+  const double coarse = run(0.6, a), fine = run(0.3, b);
+  EXPECT_GT(b.plastic, 0.7 * b.balance());  // most of the energy is dissipated by 40 us
+  EXPECT_LT(b.boundary_work, 0.0);          // the plastic contact with the wall takes energy
+  EXPECT_LT(fine, 3e-3);
+  EXPECT_GT(coarse / fine, 3.0);
+}
+
+TEST(TaylorBar, DeformedTimeStepKeepsTheImpactStable) {
+  // The Lagrangian wave speed grows as c0 / (smallest stretch) where the bar is
+  // crushed against the wall: with the time step of seed 000 eq. 38 alone the
+  // run blows up at CFL 0.6 (the seed used CFL 0.1), with the deformed one it does not.
+  const std::vector<std::string> coarse{"constants.R_over_dp=4", "solver.end_time=2e-5"};
+  auto with = [&](const std::string& setting) {
+    std::vector<std::string> o = coarse;
+    o.push_back("solver.deformed_time_step=" + setting);
+    return o;
+  };
+  EXPECT_THROW(test::run_config("taylor_bar_3d_round.json", with("false")), NumericalFailure);
+  test::Trace t = test::run_config("taylor_bar_3d_round.json", with("true"));
+  EXPECT_GE(t.solver->time(), 2e-5 * (1 - 1e-12));
+}
+
+TEST(TaylorBar, RoundAluminiumBarFinalShape) {
+  // R/dp = 4 (1,248 particles), 80 us. Measured: length 1.5392 cm, radius
+  // 0.8278 cm (particle centres); at R/dp = 8 the same scene gives 1.498 / 0.882 cm
+  // against 1.4908 / 0.9075 cm of seed 000 Table 6 (docs/validation.md).
+  test::Trace t = test::run_config("taylor_bar_3d_round.json", {"constants.R_over_dp=4"});
+  const BarShape s = final_shape(*t.solver, 3);
+  EXPECT_NEAR(s.length, 0.015392, 0.01 * 0.015392);
+  EXPECT_NEAR(s.radius, 0.008278, 0.01 * 0.008278);
+  const auto top = t.probes.back().at(0);  // the bar has left the wall and stopped shortening
+  EXPECT_LT(std::abs(top.velocity[2]), 0.1 * 373.0);
+}
