@@ -13,7 +13,7 @@
 namespace mfsd {
 
 enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2 };
-enum class HardeningLaw { linear, saturation };
+enum class HardeningLaw { linear, saturation, herschel_bulkley };
 enum class HourglassControl { none, laplacian, genog };
 enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
 enum class DampingForm { isotropic, split };  // one wave speed | c0 normal, c_s shear
@@ -32,6 +32,10 @@ struct MaterialSpec {
   double hardening_modulus = 0;
   double saturation_stress = 0;
   double saturation_exponent = 0;
+  // Viscoplastic Herschel-Bulkley flow instead of hardening (seed 000 Table 8):
+  // dgamma/dt = ((|s| - sqrt(2/3) yield_stress) / viscosity)^(1 / flow_exponent).
+  double viscosity = 0;
+  double flow_exponent = 1;
   bool plastic() const { return model == MaterialModel::j2; }
 };
 

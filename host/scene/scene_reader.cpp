@@ -54,6 +54,15 @@ MaterialSpec read_material(JsonNode m) {
             m.key_path("saturation_stress"), std::to_string(spec.saturation_stress),
             "a value >= yield_stress (" + std::to_string(spec.yield_stress) + "): the saturation law would soften");
     }
+    if (m.has("viscosity") || m.has("flow_exponent")) {
+      if (spec.hardening != HardeningLaw::linear || spec.hardening_modulus != 0)
+        throw SceneError(m.key_path("viscosity"), "hardening as well",
+                         "either hardening (hardening_modulus, saturation_*) or Herschel-Bulkley viscoplastic flow "
+                         "(viscosity, flow_exponent), not both");
+      spec.hardening = HardeningLaw::herschel_bulkley;
+      spec.viscosity = m.number("viscosity", Range::positive());
+      spec.flow_exponent = m.number("flow_exponent", 1.0, Range::positive());
+    }
   }
   m.finish();
   return spec;

@@ -486,6 +486,11 @@ class TlsphSolver final : public Solver {
     k.damping_shear = base * (s.damping_form == DampingForm::split ? p.c_shear : p.c0);
     const MaterialSpec& m = spec.material;
     if (m.model == MaterialModel::j2) {
+      if (m.hardening == HardeningLaw::herschel_bulkley)
+        return make_variant(
+            J2Plastic<D, Real, HerschelBulkley<Real>>{
+                Real(p.K), Real(p.G), {Real(m.yield_stress), Real(m.viscosity), Real(m.flow_exponent)}},
+            k);
       if (m.hardening == HardeningLaw::saturation)
         return make_variant(
             J2Plastic<D, Real, SaturationHardening<Real>>{Real(p.K),

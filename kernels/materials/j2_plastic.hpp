@@ -107,14 +107,15 @@ struct J2Plastic {
     return mul_transposed(F_bar * s.plastic_metric_inverse(), F_bar);
   }
 
-  // The return mapping at F (Algorithm 1): updates the state, returns the stress parts.
-  MFSD_HD J2Stress<Real> update(const Mat<D, Real>& F, J2State<Real>& state) const {
+  // The return mapping at F (Algorithm 1): updates the state, returns the stress
+  // parts. dt: time since the previous update (viscoplastic laws only).
+  MFSD_HD J2Stress<Real> update(const Mat<D, Real>& F, J2State<Real>& state, Real dt = Real(0)) const {
     const Mat<3, Real> F3 = embed3(F);
     const Real J = det(F3);
     const Mat<3, Real> F_bar = isochoric(F3, J);
     Mat<3, Real> trial = elastic_tensor(F_bar, state);
     trial *= Real(1) / math::cbrt(det(trial));  // det = 1 against round-off drift of C_p^{-1}
-    const J2Update<Real> r = j2_return_mapping(trial, state.alpha, G, hardening);
+    const J2Update<Real> r = j2_return_mapping(trial, state.alpha, G, hardening, dt);
     if (r.dgamma > Real(0)) {
       const Mat<3, Real> F_bar_inv = inverse(F_bar);
       state.set_plastic_metric_inverse(mul_transposed(F_bar_inv * r.be_bar, F_bar_inv));

@@ -24,6 +24,8 @@
 // (0.56 % in uniaxial tension to a stretch of 1.3 with tau/E = 0.8 %,
 // tests/unit/test_j2_return_mapping.cpp); an exponential-map return would not.
 #pragma once
+#include <type_traits>
+
 #include "kernels/core/mat.hpp"
 
 namespace mfsd {
@@ -47,6 +49,43 @@ struct SaturationHardening {
   MFSD_HD Real slope(Real alpha) const { return H + (sigma_inf - sigma_y) * delta * math::exp(-delta * alpha); }
 };
 
+// Viscoplastic Herschel-Bulkley flow (seed 000 section 5.7, Table 8; formulations.md
+// section 2): no flow below the yield radius, above it the rate
+//   dgamma/dt = ((|s| - sqrt(2/3) sigma_y) / eta)^(1/n),
+// i.e. the returned |s| = sqrt(2/3) sigma_y + eta (dgamma/dt)^n: a rate-dependent
+// radius of the yield surface (n > 1 thickens, as the oobleck of Table 8).
+template <class Real>
+struct HerschelBulkley {
+  Real sigma_y, eta, n;
+  static constexpr bool rate_dependent = true;
+};
+
+// The radius of the yield surface, sqrt(2/3) sigma_Y, once the step's
+// multiplier is x, and its derivative in x; dt is the step (used by rate laws).
+template <class Real, class Hardening>
+MFSD_HD inline Real flow_radius(const Hardening& h, Real alpha_n, Real x, Real) {
+  const Real c = math::sqrt(Real(2) / Real(3));
+  return c * h.yield(alpha_n + c * x);
+}
+template <class Real, class Hardening>
+MFSD_HD inline Real flow_radius_slope(const Hardening& h, Real alpha_n, Real x, Real) {
+  return Real(2) / Real(3) * h.slope(alpha_n + math::sqrt(Real(2) / Real(3)) * x);
+}
+template <class Real>
+MFSD_HD inline Real flow_radius(const HerschelBulkley<Real>& h, Real, Real x, Real dt) {
+  return math::sqrt(Real(2) / Real(3)) * h.sigma_y + h.eta * math::pow(x / dt, h.n);
+}
+template <class Real>
+MFSD_HD inline Real flow_radius_slope(const HerschelBulkley<Real>& h, Real, Real x, Real dt) {
+  if (!(x > Real(0))) return h.n > Real(1) ? Real(0) : (h.n == Real(1) ? h.eta / dt : Real(1e30));
+  return h.eta * h.n * math::pow(x / dt, h.n - Real(1)) / dt;
+}
+
+template <class Law, class = void>
+struct IsRateDependent : std::false_type {};
+template <class Law>
+struct IsRateDependent<Law, std::void_t<decltype(Law::rate_dependent)>> : std::bool_constant<Law::rate_dependent> {};
+
 template <class Real>
 struct J2Update {
   Mat<3, Real> be_bar;  // updated isochoric elastic left Cauchy-Green tensor
@@ -61,21 +100,21 @@ struct J2Update {
 // bracket, bisection when a step leaves it; converged to |r| <= 1e-12 |s_tr|
 // (1e-6 in float).
 template <class Real, class Hardening>
-MFSD_HD inline Real j2_consistency(Real s_norm, Real G_bar, Real alpha_n, const Hardening& h, int& iterations) {
-  const Real c = math::sqrt(Real(2) / Real(3));
+MFSD_HD inline Real j2_consistency(Real s_norm, Real G_bar, Real alpha_n, const Hardening& h, int& iterations,
+                                   Real dt = Real(0)) {
   const Real tol = (sizeof(Real) == 8 ? Real(1e-12) : Real(1e-6)) * s_norm;
   Real lo = Real(0), hi = s_norm / (Real(2) * G_bar);
   Real x = Real(0);
   iterations = 0;
   for (int k = 0; k < 100; ++k) {
     ++iterations;
-    const Real r = s_norm - Real(2) * G_bar * x - c * h.yield(alpha_n + c * x);
+    const Real r = s_norm - Real(2) * G_bar * x - flow_radius(h, alpha_n, x, dt);
     if (math::fabs(r) <= tol) break;
     if (r > 0)
       lo = x;
     else
       hi = x;
-    const Real dr = -Real(2) * G_bar - Real(2) / Real(3) * h.slope(alpha_n + c * x);
+    const Real dr = -Real(2) * G_bar - flow_radius_slope(h, alpha_n, x, dt);
     Real next = x - r / dr;
     if (!(next > lo && next < hi)) next = Real(0.5) * (lo + hi);
     x = next;
@@ -83,18 +122,22 @@ MFSD_HD inline Real j2_consistency(Real s_norm, Real G_bar, Real alpha_n, const 
   return x;
 }
 
+// dt: the time since the previous return mapping (rate-dependent laws only;
+// with dt = 0 they do not flow).
 template <class Real, class Hardening>
 MFSD_HD inline J2Update<Real> j2_return_mapping(const Mat<3, Real>& be_bar_trial, Real alpha_n, Real G,
-                                                const Hardening& h) {
+                                                const Hardening& h, Real dt = Real(0)) {
   const Real c = math::sqrt(Real(2) / Real(3));
   const Mat<3, Real> s_tr = deviator(be_bar_trial) * G;
   const Real s_norm = frobenius_norm(s_tr);
-  const Real f_tr = s_norm - c * h.yield(alpha_n);  // eq. A.1
-  if (f_tr <= Real(0)) return J2Update<Real>{be_bar_trial, s_tr, alpha_n, Real(0), 0};
+  const Real f_tr = s_norm - flow_radius(h, alpha_n, Real(0), dt);  // eq. A.1
+  bool elastic = f_tr <= Real(0);
+  if constexpr (IsRateDependent<Hardening>::value) elastic = elastic || !(dt > Real(0));
+  if (elastic) return J2Update<Real>{be_bar_trial, s_tr, alpha_n, Real(0), 0};
   const Real I_tr = trace(be_bar_trial) / Real(3);
   const Real G_bar = G * I_tr;
   int iterations = 0;
-  const Real dgamma = j2_consistency(s_norm, G_bar, alpha_n, h, iterations);
+  const Real dgamma = j2_consistency(s_norm, G_bar, alpha_n, h, iterations, dt);
   const Mat<3, Real> s = s_tr * (Real(1) - Real(2) * G_bar * dgamma / s_norm);
   // b_bar_e = A + x I with A = s / G (traceless) and det = 1:
   //   x^3 - 1/2 tr(A^2) x + det(A) - 1 = 0, Newton from the trial's I_tr.

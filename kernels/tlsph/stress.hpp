@@ -66,7 +66,7 @@ struct StressFunctor {
     [[maybe_unused]] Mat<D, Real> S;
     if constexpr (plastic) {
       J2State<Real> state = plastic_state[i];
-      const J2Stress<Real> p = material.update(F, state);  // Algorithm 1 at n + 1/2
+      const J2Stress<Real> p = material.update(F, state, Real(2) * half_dt);  // Algorithm 1 at n + 1/2
       plastic_state[i] = state;
       const Mat<D, Real> be = leading_block<D>(p.be_bar);
       tau = tau_d;

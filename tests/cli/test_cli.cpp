@@ -203,6 +203,10 @@ TEST_F(Cli, BadPlasticMaterials) {
   expect_input_error("run " + scene(nh, R"("model": "j2", "yield_stress": 2e4)") + " -o " + out() +
                          " --set solver.hourglass=laplacian",
                      "the Laplacian form of seed 003 is defined for elastic bodies only");
+  expect_input_error("run " +
+                         scene(nh, R"("model": "j2", "yield_stress": 2e4, "hardening_modulus": 1e5, "viscosity": 10)") +
+                         " -o " + out(),
+                     "/bodies/0/material/viscosity: got hardening as well; expected either hardening");
   expect_input_error("run " + scene(nh, R"("model": "neo_hookean", "yield_stress": 2e4)") + " -o " + out(),
                      "/bodies/0/material/yield_stress: got an unknown key");
 }

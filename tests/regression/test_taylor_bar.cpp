@@ -41,11 +41,11 @@ TEST(TaylorBar, EnergyBalanceClosesWithPlasticWork) {
   // the initial energy at CFL 0.6, 0.3, 0.15 (second order in dt). Without B0
   // in the force sums, as the scene has it, the drift is 8 % at CFL 0.6.
   auto run = [](double cfl, BodyEnergy& last) {
-    test::Trace t = test::run_config("taylor_bar_2d.json",
-                                     {"constants.H_over_dp=10", "solver.hourglass=none", "solver.damping.factor=0",
-                                      "solver.kernel_correction_in_force=true", "solver.end_time=4e-5",
-                                      "solver.cfl=" + std::to_string(cfl)},
-                                     Precision::double_precision, 0, 10);
+    test::Trace t = test::run_config(
+        "taylor_bar_2d.json",
+        {"constants.H_over_dp=10", "solver.hourglass=none", "solver.damping.factor=0",
+         "solver.kernel_correction_in_force=true", "solver.end_time=4e-5", "solver.cfl=" + std::to_string(cfl)},
+        Precision::double_precision, 0, 10);
     const double E0 = t.energies.front().bodies[0].balance();
     double drift = 0;
     for (const auto& e : t.energies) drift = std::max(drift, std::abs(e.bodies[0].balance() - E0));

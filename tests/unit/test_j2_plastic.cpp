@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "kernels/core/inverse_stretch.hpp"
 #include "kernels/core/eigen_symmetric.hpp"
+#include "kernels/core/inverse_stretch.hpp"
 #include "kernels/materials/j2_plastic.hpp"
 
 using namespace mfsd;
@@ -166,6 +166,35 @@ TEST(J2Plastic, SaturationHardeningFollowsItsLaw) {
     }
   }
   EXPECT_GT(s.alpha, 0.3);
+}
+
+// Herschel-Bulkley (seed 000 Table 8, the oobleck): in steady simple shear at
+// the rate gamma_dot all deformation is plastic, |d_p| = gamma_dot / sqrt(2), so
+// the flow law gives |s| = sqrt(2/3) sigma_y + eta (gamma_dot / sqrt(2))^n.
+TEST(J2Plastic, HerschelBulkleySteadyShearFollowsTheFlowLaw) {
+  for (double n : {2.8, 1.0, 0.5}) {
+    const HerschelBulkley<double> law{0.1, 10.0, n};
+    const J2Plastic<3, double, HerschelBulkley<double>> m{109.0e3, 11.2e3, law};
+    for (double rate : {0.5, 2.0}) {
+      J2State<double> s = J2State<double>::initial();
+      const double dt = 1e-4 / rate;
+      double s_norm = 0;
+      for (int k = 1; k <= 5000; ++k) {  // to a shear of 0.5
+        Mat<3, double> F = Mat<3, double>::identity();
+        F.m[0][1] = rate * (k - 0.5) * dt;  // midpoint of the step
+        s_norm = frobenius_norm(deviator(m.update(F, s, dt).be_bar) * m.G);
+      }
+      const double expected = std::sqrt(2.0 / 3.0) * law.sigma_y + law.eta * std::pow(rate / std::sqrt(2.0), n);
+      EXPECT_NEAR(s_norm, expected, 1e-4 * expected) << "n " << n << " rate " << rate;
+    }
+  }
+  // No time, no viscous flow: the trial is kept.
+  const J2Plastic<3, double, HerschelBulkley<double>> m{109.0e3, 11.2e3, {0.1, 10.0, 2.8}};
+  J2State<double> s = J2State<double>::initial();
+  Mat<3, double> F = Mat<3, double>::identity();
+  F.m[0][1] = 0.1;
+  m.update(F, s, 0.0);
+  EXPECT_EQ(s.alpha, 0.0);
 }
 
 TEST(InverseStretch, IsOneOverTheSmallestPrincipalStretch) {

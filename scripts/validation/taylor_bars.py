@@ -1,0 +1,191 @@
+#!/usr/bin/env python3
+"""Taylor bars of seed 000 section 5.5: J2 bars thrown at a rigid frictionless
+wall (configs/taylor_bar_*.json, genog, damping factor 0.125).
+
+  round   aluminium, L = 2.346 cm, R = 0.391 cm, perfectly plastic, 373 m/s:
+          final length and radius against seed 000 Table 6 (R/dp = 8, 12, 16)
+  square  copper, 6 x 6 x 30 mm, linear hardening, 227 m/s: final x of point S
+          (middle of a bottom edge) against 6.953 mm (seed 000 Fig. 25, H/dp = 20)
+  2d      copper, plane strain 6 x 30 mm, 227 m/s and 400 m/s (Fig. 19-21):
+          stability, final shape, largest von Mises strain
+
+Final shapes are measured on the last snapshot (80 us; 60 us in 2-D, as in
+Fig. 19) from particle centres; "+ dp/2" columns add half a spacing (the
+particle's extent) since the seed does not say which it reports.
+
+Writes docs/validation/taylor_bars_<case>.json and .png.
+Usage: scripts/validation/taylor_bars.py round|square|2d [--res 8 12] [--threads N] [--reuse]
+"""
+import argparse
+import glob
+import json
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(__file__))
+import mfsd_runs as m  # noqa: E402
+import vtu  # noqa: E402
+
+DOCS = os.path.join(m.ROOT, "docs", "validation")
+OUT = os.path.join(m.ROOT, "out", "validation")
+TABLE6 = {8: (1.4908, 0.9075), 12: (1.4631, 0.9323), 16: (1.4546, 0.9616)}  # cm, seed 000 Table 6
+CHEN = (1.454, 1.051)  # Chen et al. (1996), quoted in Table 6
+S_SEED = 6.953e-3  # m, seed 000 Fig. 25 at H/dp = 20
+
+
+def final_shape(outdir, dim):
+    """Length (largest height), width (largest |x|), radius, largest plastic and
+    von Mises strain, and the id-ordered points, of the last snapshot."""
+    import numpy as np
+    f = sorted(glob.glob(os.path.join(outdir, "snapshots", "*.vtu")))[-1]
+    d = vtu.read_vtu(f)
+    x = np.asarray(d["points"], dtype=float)
+    up = x[:, dim - 1]
+    r = np.hypot(x[:, 0], x[:, 1]) if dim == 3 else np.abs(x[:, 0])
+    return {"length": float(up.max()), "half_width": float(np.abs(x[:, 0]).max()), "radius": float(r.max()),
+            "max_plastic_strain": float(np.max(d["plastic_strain"])),
+            "max_von_mises_strain": float(np.max(d["von_mises_strain"])),
+            "hourglass_max": float(np.max(d["hourglass"])), "points": x}
+
+
+def run_case(config, tag, sets, dim, threads, reuse):
+    outdir = os.path.join(OUT, tag)
+    p, e, timing = m.run_and_read(config, sets, outdir, threads, reuse)
+    s = final_shape(outdir, dim)
+    res = {"particles": timing["particles"], "steps": timing["steps"], "wall_seconds": timing["wall_seconds"],
+           "particle_steps_per_second": timing["particle_steps_per_second"],
+           "mfsd_commit_of_the_run": timing["mfsd_commit_of_the_run"],
+           "energy_initial": e["balance"][0], "plastic_work_final": e["plastic"][-1],
+           "kinetic_final": e["kinetic"][-1], "wall_work": e["boundary_work"][-1],
+           "energy_balance_final": e["balance"][-1]}
+    res.update({k: v for k, v in s.items() if k != "points"})
+    return res, s["points"], p
+
+
+def plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as pyplot
+    return pyplot
+
+
+def round_bar(args):
+    res = {"study": "taylor_bar_round", "command": "scripts/validation/taylor_bars.py round", "machine": m.machine(),
+           "seed_table6_cm": {str(k): v for k, v in TABLE6.items()}, "chen_1996_cm": CHEN, "runs": {}}
+    p_ = plt()
+    fig, ax = p_.subplots(1, 2, figsize=(11, 4.5))
+    for n in args.res or [4, 8]:
+        dp = 0.391e-2 / n
+        r, pts, probes = run_case("configs/taylor_bar_3d_round.json", f"taylor_round_R{n}",
+                                  {"constants.R_over_dp": n, "output.interval": 8e-6}, 3, args.threads, args.reuse)
+        r["dp"] = dp
+        r["length_cm"], r["radius_cm"] = 100 * r["length"], 100 * r["radius"]
+        r["length_plus_half_dp_cm"], r["radius_plus_half_dp_cm"] = 100 * (r["length"] + dp / 2), 100 * (
+            r["radius"] + dp / 2)
+        if n in TABLE6:
+            L6, R6 = TABLE6[n]
+            r["length_error_vs_seed"] = r["length_cm"] / L6 - 1
+            r["radius_error_vs_seed"] = r["radius_cm"] / R6 - 1
+        res["runs"][str(n)] = r
+        seed = f" (seed {TABLE6[n][0]:.4f} / {TABLE6[n][1]:.4f})" if n in TABLE6 else ""
+        print(f"round R/dp = {n}: length {r['length_cm']:.4f} cm, radius {r['radius_cm']:.4f} cm{seed}; "
+              f"+dp/2: {r['length_plus_half_dp_cm']:.4f} / {r['radius_plus_half_dp_cm']:.4f}")
+        rr = (pts[:, 0] ** 2 + pts[:, 1] ** 2) ** 0.5
+        ax[0].scatter(100 * rr * (1 - 2 * (pts[:, 1] < 0)), 100 * pts[:, 2], s=1, label=f"R/dp = {n}")
+        ax[1].plot([1e6 * t for t in probes["time"]], [100 * z for z in probes["top.position.z"]], label=f"R/dp = {n}")
+    for n, (L6, R6) in TABLE6.items():
+        ax[0].plot([-R6, R6], [L6, L6], ":", lw=1)
+        ax[0].plot([R6, R6], [0, 0.2], ":", lw=1, label=f"seed 000 Table 6, R/dp = {n}")
+    ax[0].set_aspect("equal")
+    ax[0].set_xlabel("signed radius [cm]")
+    ax[0].set_ylabel("z [cm]")
+    ax[0].legend(fontsize=6, markerscale=5)
+    ax[1].axhline(TABLE6[16][0], color="k", ls=":", lw=1, label="seed 000, R/dp = 16")
+    ax[1].set_xlabel("t [us]")
+    ax[1].set_ylabel("top of the bar [cm]")
+    ax[1].legend(fontsize=7)
+    fig.suptitle("Round aluminium Taylor bar, 373 m/s (seed 000 Table 6), final shape at 80 us")
+    fig.tight_layout()
+    return res, fig
+
+
+def square_bar(args):
+    res = {"study": "taylor_bar_square", "command": "scripts/validation/taylor_bars.py square", "machine": m.machine(),
+           "seed_S_x": S_SEED, "runs": {}}
+    p_ = plt()
+    fig, ax = p_.subplots(1, 2, figsize=(11, 4.5))
+    for n in args.res or [8, 12]:
+        dp = 0.006 / n
+        r, pts, probes = run_case("configs/taylor_bar_3d_square.json", f"taylor_square_H{n}",
+                                  {"constants.H_over_dp": n, "output.interval": 8e-6}, 3, args.threads, args.reuse)
+        r["dp"] = dp
+        r["S_x"] = probes["S.position.x"][-1]
+        r["S_x_plus_half_dp"] = r["S_x"] + dp / 2
+        r["S_x_error_vs_seed"] = r["S_x"] / S_SEED - 1
+        res["runs"][str(n)] = r
+        print(f"square H/dp = {n}: S x = {1e3 * r['S_x']:.3f} mm (+dp/2: {1e3 * r['S_x_plus_half_dp']:.3f}); "
+              f"seed 6.953 mm at H/dp = 20; length {1e3 * r['length']:.2f} mm")
+        ax[0].plot([1e6 * t for t in probes["time"]], [1e3 * x for x in probes["S.position.x"]], label=f"H/dp = {n}")
+        sel = abs(pts[:, 1]) < dp
+        ax[1].scatter(1e3 * pts[sel, 0], 1e3 * pts[sel, 2], s=1, label=f"H/dp = {n}")
+    ax[0].axhline(1e3 * S_SEED, color="k", ls=":", lw=1, label="seed 000 Fig. 25, H/dp = 20")
+    ax[0].set_xlabel("t [us]")
+    ax[0].set_ylabel("x of point S [mm]")
+    ax[0].legend(fontsize=7)
+    ax[1].set_aspect("equal")
+    ax[1].set_xlabel("x [mm]")
+    ax[1].set_ylabel("z [mm]")
+    ax[1].set_title("particles near y = 0 at 80 us", fontsize=9)
+    ax[1].legend(fontsize=7, markerscale=5)
+    fig.suptitle("Square copper Taylor bar, 227 m/s (seed 000 Fig. 22-25)")
+    fig.tight_layout()
+    return res, fig
+
+
+def bar_2d(args):
+    res = {"study": "taylor_bar_2d", "command": "scripts/validation/taylor_bars.py 2d", "machine": m.machine(),
+           "runs": {}}
+    p_ = plt()
+    cases = [(n, v) for n in (args.res or [10, 20, 40]) for v in (227.0, 400.0)]
+    fig, ax = p_.subplots(1, 2, figsize=(11, 5))
+    for n, v0 in cases:
+        r, pts, probes = run_case("configs/taylor_bar_2d.json", f"taylor_2d_H{n}_v{int(v0)}",
+                                  {"constants.H_over_dp": n, "constants.v0": v0, "output.interval": 6e-6}, 2,
+                                  args.threads, args.reuse)
+        res["runs"][f"H{n}_v{int(v0)}"] = r
+        print(f"2d H/dp = {n}, v0 = {v0:g}: length {1e3 * r['length']:.2f} mm, half width "
+              f"{1e3 * r['half_width']:.2f} mm, max plastic strain {r['max_plastic_strain']:.2f}, max von Mises "
+              f"strain {r['max_von_mises_strain']:.1f}, hourglass max {r['hourglass_max']:.3f}")
+        a = ax[0] if v0 == 227.0 else ax[1]
+        a.scatter(1e3 * pts[:, 0], 1e3 * pts[:, 1], s=0.5, label=f"H/dp = {n}")
+    for a, v0 in zip(ax, (227, 400)):
+        a.set_aspect("equal")
+        a.set_xlabel("x [mm]")
+        a.set_ylabel("y [mm]")
+        a.set_title(f"{v0} m/s, t = 60 us", fontsize=9)
+        a.legend(fontsize=7, markerscale=8)
+    fig.suptitle("2-D copper Taylor bar (seed 000 Fig. 19-21), genog")
+    fig.tight_layout()
+    return res, fig
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("case", choices=["round", "square", "2d"])
+    ap.add_argument("--res", type=int, nargs="*", help="resolutions (R/dp, H/dp)")
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
+    args = ap.parse_args()
+    res, fig = {"round": round_bar, "square": square_bar, "2d": bar_2d}[args.case](args)
+    os.makedirs(DOCS, exist_ok=True)
+    stem = os.path.join(DOCS, f"taylor_bars_{args.case}")
+    with open(stem + ".json", "w") as f:
+        json.dump(res, f, indent=1)
+        f.write("\n")
+    fig.savefig(stem + ".png", dpi=110)
+    print(f"wrote {os.path.relpath(stem, m.ROOT)}.json/.png")
+
+
+if __name__ == "__main__":
+    main()
