@@ -94,6 +94,16 @@ def first_period(t, y):
     return c[2] - c[0] if len(c) > 2 else float("nan")
 
 
+def write_study(stem, result, fig):
+    """Writes a study's result as stem.json and its figure as stem.png."""
+    os.makedirs(os.path.dirname(stem), exist_ok=True)
+    with open(stem + ".json", "w") as f:
+        json.dump(result, f, indent=1)
+        f.write("\n")
+    fig.savefig(stem + ".png", dpi=110)
+    print(f"wrote {os.path.relpath(stem, ROOT)}.json/.png")
+
+
 def machine():
     """Where a study ran: CPU model, cores, load (stated in every result file)."""
     info = {"cpu": "unknown", "cores": os.cpu_count()}

@@ -14,7 +14,6 @@ Writes docs/validation/seed001_<case>.json and .png.
 Usage: scripts/validation/seed001_cases.py plate|twisting [--threads N] [--dp DP] [--reuse]
 """
 import argparse
-import json
 import math
 import os
 import sys
@@ -128,13 +127,7 @@ def main():
     global REUSE
     REUSE = args.reuse
     res, fig = (plate if args.case == "plate" else twisting)(args)
-    os.makedirs(DOCS, exist_ok=True)
-    stem = os.path.join(DOCS, f"seed001_{args.case}")
-    with open(stem + ".json", "w") as f:
-        json.dump(res, f, indent=1)
-        f.write("\n")
-    fig.savefig(stem + ".png", dpi=110)
-    print(f"wrote {os.path.relpath(stem, m.ROOT)}.json/.png")
+    m.write_study(os.path.join(DOCS, f"seed001_{args.case}"), res, fig)
 
 
 if __name__ == "__main__":

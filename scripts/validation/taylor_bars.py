@@ -10,16 +10,16 @@ wall (configs/taylor_bar_*.json, genog, damping factor 0.125).
           stability, final shape, largest von Mises strain
 
 Final shapes are measured on the last snapshot (80 us; 60 us in 2-D, as in
-Fig. 19) from particle centres; "+ dp/2" columns add half a spacing (the
-particle's extent) since the seed does not say which it reports.
+Fig. 19). The bars bounce off the wall (they move up at about 15 m/s by then),
+so the length is the extent z_max - z_min + dp of the particles (each stands
+for a cube of side dp; the initial value is L) and the radius r_max + dp/2;
+the centre-to-centre values are recorded as well.
 
 Writes docs/validation/taylor_bars_<case>.json and .png.
 Usage: scripts/validation/taylor_bars.py round|square|2d [--res 8 12] [--threads N] [--reuse]
 """
 import argparse
 import glob
-import json
-import math
 import os
 import sys
 
@@ -34,33 +34,37 @@ CHEN = (1.454, 1.051)  # Chen et al. (1996), quoted in Table 6
 S_SEED = 6.953e-3  # m, seed 000 Fig. 25 at H/dp = 20
 
 
-def final_shape(outdir, dim):
-    """Length (largest height), width (largest |x|), radius, largest plastic and
-    von Mises strain, and the id-ordered points, of the last snapshot."""
+def final_shape(outdir, dim, dp):
+    """Length and radius (particle extents, see above; *_centres without dp),
+    half width (largest |x| + dp/2), largest plastic and von Mises strain, and
+    the points, of the last snapshot."""
     import numpy as np
     f = sorted(glob.glob(os.path.join(outdir, "snapshots", "*.vtu")))[-1]
     d = vtu.read_vtu(f)
     x = np.asarray(d["points"], dtype=float)
     up = x[:, dim - 1]
     r = np.hypot(x[:, 0], x[:, 1]) if dim == 3 else np.abs(x[:, 0])
-    return {"length": float(up.max()), "half_width": float(np.abs(x[:, 0]).max()), "radius": float(r.max()),
+    return {"length": float(up.max() - up.min() + dp), "radius": float(r.max() + dp / 2),
+            "length_centres": float(up.max() - up.min()), "radius_centres": float(r.max()),
+            "half_width": float(np.abs(x[:, 0]).max() + dp / 2), "lift_off": float(up.min() - dp / 2),
             "max_plastic_strain": float(np.max(d["plastic_strain"])),
             "max_von_mises_strain": float(np.max(d["von_mises_strain"])),
-            "hourglass_max": float(np.max(d["hourglass"])), "points": x}
+            "hourglass_max": float(np.max(d["hourglass"])), "points": x,
+            "reference": x - np.asarray(d["displacement"], dtype=float)}
 
 
-def run_case(config, tag, sets, dim, threads, reuse):
+def run_case(config, tag, sets, dim, dp, threads, reuse):
     outdir = os.path.join(OUT, tag)
     p, e, timing = m.run_and_read(config, sets, outdir, threads, reuse)
-    s = final_shape(outdir, dim)
+    s = final_shape(outdir, dim, dp)
     res = {"particles": timing["particles"], "steps": timing["steps"], "wall_seconds": timing["wall_seconds"],
            "particle_steps_per_second": timing["particle_steps_per_second"],
            "mfsd_commit_of_the_run": timing["mfsd_commit_of_the_run"],
            "energy_initial": e["balance"][0], "plastic_work_final": e["plastic"][-1],
            "kinetic_final": e["kinetic"][-1], "wall_work": e["boundary_work"][-1],
            "energy_balance_final": e["balance"][-1]}
-    res.update({k: v for k, v in s.items() if k != "points"})
-    return res, s["points"], p
+    res.update({k: v for k, v in s.items() if k not in ("points", "reference")})
+    return res, s["points"], p, s["reference"]
 
 
 def plt():
@@ -77,12 +81,11 @@ def round_bar(args):
     fig, ax = p_.subplots(1, 2, figsize=(11, 4.5))
     for n in args.res or [4, 8]:
         dp = 0.391e-2 / n
-        r, pts, probes = run_case("configs/taylor_bar_3d_round.json", f"taylor_round_R{n}",
-                                  {"constants.R_over_dp": n, "output.interval": 8e-6}, 3, args.threads, args.reuse)
+        r, pts, probes, _ = run_case("configs/taylor_bar_3d_round.json", f"taylor_round_R{n}",
+                                  {"constants.R_over_dp": n, "output.interval": 8e-6}, 3, dp, args.threads,
+                                  args.reuse)
         r["dp"] = dp
         r["length_cm"], r["radius_cm"] = 100 * r["length"], 100 * r["radius"]
-        r["length_plus_half_dp_cm"], r["radius_plus_half_dp_cm"] = 100 * (r["length"] + dp / 2), 100 * (
-            r["radius"] + dp / 2)
         if n in TABLE6:
             L6, R6 = TABLE6[n]
             r["length_error_vs_seed"] = r["length_cm"] / L6 - 1
@@ -90,9 +93,11 @@ def round_bar(args):
         res["runs"][str(n)] = r
         seed = f" (seed {TABLE6[n][0]:.4f} / {TABLE6[n][1]:.4f})" if n in TABLE6 else ""
         print(f"round R/dp = {n}: length {r['length_cm']:.4f} cm, radius {r['radius_cm']:.4f} cm{seed}; "
-              f"+dp/2: {r['length_plus_half_dp_cm']:.4f} / {r['radius_plus_half_dp_cm']:.4f}")
+              f"centres {100 * r['length_centres']:.4f} / {100 * r['radius_centres']:.4f}; "
+              f"lift-off {1e3 * r['lift_off']:.2f} mm")
         rr = (pts[:, 0] ** 2 + pts[:, 1] ** 2) ** 0.5
-        ax[0].scatter(100 * rr * (1 - 2 * (pts[:, 1] < 0)), 100 * pts[:, 2], s=1, label=f"R/dp = {n}")
+        ax[0].scatter(100 * rr * (1 - 2 * (pts[:, 1] < 0)), 100 * (pts[:, 2] - pts[:, 2].min() + dp / 2), s=1,
+                      label=f"R/dp = {n}")
         ax[1].plot([1e6 * t for t in probes["time"]], [100 * z for z in probes["top.position.z"]], label=f"R/dp = {n}")
     for n, (L6, R6) in TABLE6.items():
         ax[0].plot([-R6, R6], [L6, L6], ":", lw=1)
@@ -117,8 +122,9 @@ def square_bar(args):
     fig, ax = p_.subplots(1, 2, figsize=(11, 4.5))
     for n in args.res or [8, 12]:
         dp = 0.006 / n
-        r, pts, probes = run_case("configs/taylor_bar_3d_square.json", f"taylor_square_H{n}",
-                                  {"constants.H_over_dp": n, "output.interval": 8e-6}, 3, args.threads, args.reuse)
+        r, pts, probes, ref = run_case("configs/taylor_bar_3d_square.json", f"taylor_square_H{n}",
+                                  {"constants.H_over_dp": n, "output.interval": 8e-6}, 3, dp, args.threads,
+                                  args.reuse)
         r["dp"] = dp
         r["S_x"] = probes["S.position.x"][-1]
         r["S_x_plus_half_dp"] = r["S_x"] + dp / 2
@@ -127,7 +133,7 @@ def square_bar(args):
         print(f"square H/dp = {n}: S x = {1e3 * r['S_x']:.3f} mm (+dp/2: {1e3 * r['S_x_plus_half_dp']:.3f}); "
               f"seed 6.953 mm at H/dp = 20; length {1e3 * r['length']:.2f} mm")
         ax[0].plot([1e6 * t for t in probes["time"]], [1e3 * x for x in probes["S.position.x"]], label=f"H/dp = {n}")
-        sel = abs(pts[:, 1]) < dp
+        sel = abs(ref[:, 1]) < dp  # the two particle layers next to the mid-plane y = 0
         ax[1].scatter(1e3 * pts[sel, 0], 1e3 * pts[sel, 2], s=1, label=f"H/dp = {n}")
     ax[0].axhline(1e3 * S_SEED, color="k", ls=":", lw=1, label="seed 000 Fig. 25, H/dp = 20")
     ax[0].set_xlabel("t [us]")
@@ -136,7 +142,7 @@ def square_bar(args):
     ax[1].set_aspect("equal")
     ax[1].set_xlabel("x [mm]")
     ax[1].set_ylabel("z [mm]")
-    ax[1].set_title("particles near y = 0 at 80 us", fontsize=9)
+    ax[1].set_title("particles of the mid-plane layers (|Y| < dp) at 80 us", fontsize=9)
     ax[1].legend(fontsize=7, markerscale=5)
     fig.suptitle("Square copper Taylor bar, 227 m/s (seed 000 Fig. 22-25)")
     fig.tight_layout()
@@ -150,9 +156,9 @@ def bar_2d(args):
     cases = [(n, v) for n in (args.res or [10, 20, 40]) for v in (227.0, 400.0)]
     fig, ax = p_.subplots(1, 2, figsize=(11, 5))
     for n, v0 in cases:
-        r, pts, probes = run_case("configs/taylor_bar_2d.json", f"taylor_2d_H{n}_v{int(v0)}",
+        r, pts, probes, _ = run_case("configs/taylor_bar_2d.json", f"taylor_2d_H{n}_v{int(v0)}",
                                   {"constants.H_over_dp": n, "constants.v0": v0, "output.interval": 6e-6}, 2,
-                                  args.threads, args.reuse)
+                                  0.006 / n, args.threads, args.reuse)
         res["runs"][f"H{n}_v{int(v0)}"] = r
         print(f"2d H/dp = {n}, v0 = {v0:g}: length {1e3 * r['length']:.2f} mm, half width "
               f"{1e3 * r['half_width']:.2f} mm, max plastic strain {r['max_plastic_strain']:.2f}, max von Mises "
@@ -178,13 +184,7 @@ def main():
     ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
     args = ap.parse_args()
     res, fig = {"round": round_bar, "square": square_bar, "2d": bar_2d}[args.case](args)
-    os.makedirs(DOCS, exist_ok=True)
-    stem = os.path.join(DOCS, f"taylor_bars_{args.case}")
-    with open(stem + ".json", "w") as f:
-        json.dump(res, f, indent=1)
-        f.write("\n")
-    fig.savefig(stem + ".png", dpi=110)
-    print(f"wrote {os.path.relpath(stem, m.ROOT)}.json/.png")
+    m.write_study(os.path.join(DOCS, f"taylor_bars_{args.case}"), res, fig)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@
 #include "kernels/core/eigen_symmetric.hpp"
 #include "kernels/core/inverse_stretch.hpp"
 #include "kernels/materials/j2_plastic.hpp"
+#include "rotation.hpp"
 
 using namespace mfsd;
 
@@ -38,16 +39,6 @@ Mat<D, double> history(double t) {
   F.m[0][1] = 0.3 * s;
   if constexpr (D == 3) F.m[2][1] = -0.1 * s;
   return F;
-}
-
-Mat<3, double> rotation(double angle) {  // about (2, 1, 2)/3
-  const double n[3] = {2.0 / 3, 1.0 / 3, 2.0 / 3}, c = std::cos(angle), s = std::sin(angle);
-  Mat<3, double> R;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) R.m[a][b] = (1 - c) * n[a] * n[b] + (a == b ? c : 0);
-  R.m[0][1] -= s * n[2], R.m[0][2] += s * n[1], R.m[1][0] += s * n[2];
-  R.m[1][2] -= s * n[0], R.m[2][0] -= s * n[1], R.m[2][1] += s * n[0];
-  return R;
 }
 
 struct Path {
@@ -105,7 +96,7 @@ TEST(J2Plastic, StaysOnTheYieldSurfaceAndKeepsPlasticFlowIsochoric) {
 }
 
 TEST(J2Plastic, RotatedHistoryGivesTheSameStateAndTheRotatedStress) {
-  const Mat<3, double> R = rotation(0.8);
+  const Mat<3, double> R = test::rotation({2, 1, 2}, 0.8);
   const Path a = drive<3>(2000), b = drive<3>(2000, R);
   EXPECT_NEAR(b.state.alpha, a.state.alpha, 1e-12);
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(b.state.cp_inv[k], a.state.cp_inv[k], 1e-12);
@@ -201,7 +192,7 @@ TEST(InverseStretch, IsOneOverTheSmallestPrincipalStretch) {
   EXPECT_NEAR(inverse_stretch(Mat<3, double>::identity()), 1.0, 1e-14);
   Mat<3, double> D3 = Mat<3, double>::zero();
   D3.m[0][0] = 2, D3.m[1][1] = 0.1, D3.m[2][2] = 5;
-  const Mat<3, double> R = rotation(1.1);
+  const Mat<3, double> R = test::rotation({2, 1, 2}, 1.1);
   EXPECT_NEAR(inverse_stretch(R * D3 * transpose(R)), 10.0, 1e-10);
   EXPECT_NEAR(inverse_stretch(R * D3), 10.0, 1e-10);  // rotation does not change stretches
   for (int k = 0; k < 50; ++k) {

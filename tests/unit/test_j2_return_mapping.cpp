@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "kernels/materials/j2_return_mapping.hpp"
+#include "rotation.hpp"
 
 using namespace mfsd;
 
@@ -25,16 +26,6 @@ Mat<3, double> trial(double gamma) {
   F.m[0][0] = 1 + 0.3 * gamma;
   F.m[2][2] = 1 - 0.2 * gamma;
   return isochoric(mul_transposed(F, F));
-}
-
-Mat<3, double> rotation(double angle) {  // about (1, 2, 2)/3
-  const double n[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3}, c = std::cos(angle), s = std::sin(angle);
-  Mat<3, double> R;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) R.m[a][b] = (1 - c) * n[a] * n[b] + (a == b ? c : 0);
-  R.m[0][1] -= s * n[2], R.m[0][2] += s * n[1], R.m[1][0] += s * n[2];
-  R.m[1][2] -= s * n[0], R.m[2][0] -= s * n[1], R.m[2][1] += s * n[0];
-  return R;
 }
 
 }  // namespace
@@ -93,7 +84,7 @@ TEST(J2ReturnMapping, IsObjective) {
   // Rotating the trial state rotates the result and leaves alpha unchanged.
   const LinearHardening<double> h{kSigmaY, 2e9};
   const auto be = trial(0.06);
-  const auto Q = rotation(0.7);
+  const auto Q = test::rotation({1, 2, 2}, 0.7);
   const auto u = j2_return_mapping(be, 0.01, kG, h);
   const auto v = j2_return_mapping(Q * be * transpose(Q), 0.01, kG, h);
   EXPECT_NEAR(v.alpha, u.alpha, 1e-14);
