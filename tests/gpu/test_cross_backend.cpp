@@ -78,3 +78,11 @@ TEST(CrossBackend, ConditionsAndLoadsDouble) {
   compare("cantilever_large_deformation_3d.json", {"constants.dp=0.002", "constants.Tmax=0.0005"},
           Precision::double_precision, 1e-9);
 }
+
+TEST(CrossBackend, TaylorBarsDouble) {
+  // J2 return mapping, plastic state, wall contact and the deformed time step
+  // (its inverse-stretch reduction) on the device: 2-D and round 3-D bars, coarse.
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("taylor_bar_2d.json", {"constants.H_over_dp=10"}, Precision::double_precision, 1e-7);
+  compare("taylor_bar_3d_round.json", {"constants.R_over_dp=4"}, Precision::double_precision, 1e-7);
+}
