@@ -7,7 +7,7 @@ std::vector<std::string> probe_columns(const Scene& scene) {
   const char* axes[3] = {"x", "y", "z"};
   for (auto& p : scene.probes)
     for (auto& f : p.fields) {
-      if (f == "von_mises" || f == "J") {
+      if (f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain") {
         cols.push_back(p.name + "." + f);
       } else {
         for (int a = 0; a < scene.dimension; ++a) cols.push_back(p.name + "." + f + "." + axes[a]);
@@ -24,6 +24,10 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
         row.push_back(s[k].von_mises);
       } else if (f == "J") {
         row.push_back(s[k].jacobian);
+      } else if (f == "von_mises_strain") {
+        row.push_back(s[k].von_mises_strain);
+      } else if (f == "plastic_strain") {
+        row.push_back(s[k].plastic_strain);
       } else {
         const Point3& v = f == "position" ? s[k].position : (f == "displacement" ? s[k].displacement : s[k].velocity);
         for (int a = 0; a < scene.dimension; ++a) row.push_back(v[a]);

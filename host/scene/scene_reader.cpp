@@ -282,12 +282,15 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     for (int a = 0; a < dim; ++a) probe.point[a] = x[a];
     probe.radius = node.number("radius", 0.0, Range::non_negative());
     auto fields = node.array("fields", false);
-    const std::set<std::string> allowed = {"position", "displacement", "velocity", "von_mises", "J"};
+    const std::set<std::string> allowed = {"position", "displacement",     "velocity",      "von_mises",
+                                           "J",        "von_mises_strain", "plastic_strain"};
     for (size_t k = 0; k < fields.size(); ++k) {
       const Json& f = *fields[k];
       const std::string fp = node.key_path("fields") + "/" + std::to_string(k);
       if (!f.is_string() || !allowed.count(f.get<std::string>()))
-        throw SceneError(fp, json_text(f), "one of \"position\", \"displacement\", \"velocity\", \"von_mises\", \"J\"");
+        throw SceneError(fp, json_text(f),
+                         "one of \"position\", \"displacement\", \"velocity\", \"von_mises\", \"J\", "
+                         "\"von_mises_strain\", \"plastic_strain\"");
       probe.fields.push_back(f.get<std::string>());
       node.resolved()["fields"][k] = f;
     }

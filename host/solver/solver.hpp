@@ -52,7 +52,7 @@ struct BoundaryForceSample {
 
 struct ProbeSample {
   Point3 position{}, displacement{}, velocity{};
-  double von_mises = 0, jacobian = 0;
+  double von_mises = 0, jacobian = 0, von_mises_strain = 0, plastic_strain = 0;
 };
 
 struct SetupReport {

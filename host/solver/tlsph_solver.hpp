@@ -71,10 +71,12 @@ struct ProbeGatherFunctor {
   const Vec<D, Real>* velocity;
   const Real* von_mises;
   const Real* jacobian;
-  Real* out;  // per probe: x(D) u(D) v(D) vm J
+  const Real* von_mises_strain;
+  const Real* plastic_strain;  // null without plastic bodies
+  Real* out;                   // per probe particle: x(D) u(D) v(D) vm J vm_strain plastic_strain
   MFSD_HD void operator()(Index k) const {
     const Index i = index[k];
-    Real* o = out + k * (3 * D + 2);
+    Real* o = out + k * (3 * D + 4);
     for (int a = 0; a < D; ++a) {
       o[a] = reference_position[i].v[a] + displacement[i].v[a];
       o[D + a] = displacement[i].v[a];
@@ -82,6 +84,8 @@ struct ProbeGatherFunctor {
     }
     o[3 * D] = von_mises[i];
     o[3 * D + 1] = jacobian[i];
+    o[3 * D + 2] = von_mises_strain[i];
+    o[3 * D + 3] = plastic_strain ? plastic_strain[i] : Real(0);
   }
 };
 
@@ -126,7 +130,9 @@ class TlsphSolver final : public Solver {
   TlsphSolver(const Scene& scene, const InitialParticles& init)
       : scene_(scene), init_(init), particles_(Index(init.size())) {
     for (const auto& p : scene.probes)
-      for (const auto& f : p.fields) probes_need_stress_ = probes_need_stress_ || f == "von_mises" || f == "J";
+      for (const auto& f : p.fields)
+        probes_need_stress_ =
+            probes_need_stress_ || f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain";
     bool loads = false;
     for (const auto& c : scene.conditions) loads = loads || c.type != ConditionSpec::Type::velocity;
     for (const char* name : {"stress", "force", "loads", "boundary", "deformation_rate", "time_step"})
@@ -208,7 +214,7 @@ class TlsphSolver final : public Solver {
     from_host<B>(measure_index, measure_index_);
     from_host<B>(measure_density, measure_density_);
     measure_buffer_.resize(measure_index.size() * 2 * D);
-    probe_buffer_.resize(probe_index.size() * (3 * D + 2));
+    probe_buffer_.resize(probe_index.size() * (3 * D + 4));
 
     // An initial displacement field deforms the body: F = I + grad u (seed 000
     // eq. 22 with u in place of v).
@@ -365,12 +371,13 @@ class TlsphSolver final : public Solver {
       for (auto& k : bodies_) k->stress_observables(v_);
     parallel_for<B>(Index(probe_index_.size()),
                     ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement, v_.velocity,
-                                                v_.von_mises, v_.jacobian, raw(probe_buffer_)});
+                                                v_.von_mises, v_.jacobian, v_.von_mises_strain, v_.plastic_strain,
+                                                raw(probe_buffer_)});
     const auto h = to_host<B>(probe_buffer_);
     for (size_t k = 0; k < out.size(); ++k) {
       const double w = 1.0 / double(probe_offsets_[k + 1] - probe_offsets_[k]);
       for (size_t m = probe_offsets_[k]; m < probe_offsets_[k + 1]; ++m) {
-        const Real* o = h.data() + m * (3 * D + 2);
+        const Real* o = h.data() + m * (3 * D + 4);
         for (int a = 0; a < D; ++a) {
           out[k].position[a] += w * double(o[a]);
           out[k].displacement[a] += w * double(o[D + a]);
@@ -378,6 +385,8 @@ class TlsphSolver final : public Solver {
         }
         out[k].von_mises += w * double(o[3 * D]);
         out[k].jacobian += w * double(o[3 * D + 1]);
+        out[k].von_mises_strain += w * double(o[3 * D + 2]);
+        out[k].plastic_strain += w * double(o[3 * D + 3]);
       }
     }
     return out;

@@ -97,6 +97,9 @@ TEST(TaylorBar, FloatFollowsDouble) {
   // (measured difference 4e-6 of it).
   auto top = [](Precision p) {
     test::Trace t = test::run_config("taylor_bar_2d.json", {"constants.H_over_dp=10"}, p);
+    const ProbeSample& corner = t.probes.back().at(1);  // bottom corner: crushed and spread on the wall
+    EXPECT_GT(corner.plastic_strain, 0.5);
+    EXPECT_GT(corner.von_mises_strain, corner.plastic_strain);
     return t.probes.back().at(0).position[1];
   };
   const double d = top(Precision::double_precision), f = top(Precision::single_precision);
