@@ -2,9 +2,10 @@
 // tensor b_bar_e (seed 000 Appendix A, Algorithm 1; formulations.md section 2:
 // the return mapping of Simo, with b_bar_e in place of b in the neo-Hookean
 // deviatoric stress tau_dev = G dev(b_bar_e)). One material point, one step;
-// the caller (j2_plastic.hpp: C_p^{-1} is the state there) forms the trial
-//   b_bar_e^trial = f_bar b_bar_e^n f_bar^T,  f_bar = J_f^{-1/3} F^{n+1} (F^n)^{-1},
-// and keeps b_bar_e and the equivalent plastic strain alpha per particle.
+// the caller (j2_plastic.hpp) keeps C_p^{-1} and the equivalent plastic strain
+// alpha per particle and forms the trial
+//   b_bar_e^trial = F_bar C_p^{-1} F_bar^T,  F_bar = J^{-1/3} F^{n+1/2}
+// (the same as f_bar b_bar_e^n f_bar^T with the relative deformation f).
 // Always 3 x 3: plane-strain bodies embed F with F_33 = 1 and keep the
 // out-of-plane component of b_bar_e, which plastic flow changes.
 //

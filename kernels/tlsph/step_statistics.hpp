@@ -42,8 +42,10 @@ struct StepStatisticsFunctor {
     bool ok = math::isfinite(v2) && math::isfinite(a2);
     for (int k = 0; k < D; ++k) ok = ok && x.v[k] >= lower.v[k] && x.v[k] <= upper.v[k];  // false for NaN
     Real s = Real(0);
-    if (deformation_gradient) s = inverse_stretch(deformation_gradient[i]);
-    ok = ok && math::isfinite(s);
+    if (deformation_gradient) {
+      s = inverse_stretch(deformation_gradient[i]);
+      ok = ok && math::isfinite(s);
+    }
     return StepStatistics<Real>{ok ? v2 : Real(0), ok ? a2 : Real(0), ok ? s : Real(0), ok ? n : i};
   }
 };
