@@ -2,6 +2,12 @@
 
 namespace mfsd {
 
+bool has_plastic_body(const Scene& scene) {
+  for (const auto& b : scene.bodies)
+    if (b.material.plastic()) return true;
+  return false;
+}
+
 const char* to_string(MaterialModel m) {
   switch (m) {
     case MaterialModel::neo_hookean:

@@ -166,6 +166,9 @@ struct Scene {
   std::vector<std::pair<std::string, double>> constants;
 };
 
+// Whether some body carries a plastic state.
+bool has_plastic_body(const Scene& scene);
+
 const char* to_string(MaterialModel m);
 const char* to_string(HourglassControl h);
 const char* to_string(Precision p);

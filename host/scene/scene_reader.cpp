@@ -263,8 +263,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     scene.clamps.push_back(clamp);
   }
 
-  if (!scene.solver.deformed_time_step_given)
-    for (const auto& b : scene.bodies) scene.solver.deformed_time_step |= b.material.plastic();
+  if (!scene.solver.deformed_time_step_given) scene.solver.deformed_time_step = has_plastic_body(scene);
 
   read_rigid_bodies(root, scene);
   read_conditions(root, scene, names, boundary_names);

@@ -179,7 +179,7 @@ class TlsphSolver final : public Solver {
     particles_.template add<Real>(field::jacobian);
     particles_.template add<Real>(field::von_mises_strain);
     // Plastic state over the whole set when some body is plastic (bodies are ranges of one set).
-    if (any_plastic()) {
+    if (has_plastic_body(scene_)) {
       particles_.template add<J2State<Real>>(field::plastic_state);
       particles_.template add<Real>(field::plastic_strain);
     }
@@ -530,12 +530,6 @@ class TlsphSolver final : public Solver {
         return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassGenog>>(m, k);
     }
     throw std::logic_error("unknown hourglass variant");
-  }
-
-  bool any_plastic() const {
-    for (const auto& b : scene_.bodies)
-      if (b.material.plastic()) return true;
-    return false;
   }
 
   StepStatisticsFunctor<D, Real> statistics_functor() const {
