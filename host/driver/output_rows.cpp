@@ -37,8 +37,8 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
 }
 
 namespace {
-const char* kBodyEnergyColumns[] = {"kinetic",       "strain",        "plastic", "fracture",
-                                    "external_work", "boundary_work", "balance"};
+const char* kBodyEnergyColumns[] = {"kinetic",       "strain",        "plastic",      "fracture",
+                                    "external_work", "boundary_work", "contact_work", "balance"};
 }
 
 // Totals first (the columns earlier versions wrote keep their places), then
@@ -46,7 +46,7 @@ const char* kBodyEnergyColumns[] = {"kinetic",       "strain",        "plastic",
 std::vector<std::string> energy_columns(const Scene& scene) {
   std::vector<std::string> cols{"time",          "kinetic",        "strain",        "total",
                                 "hourglass_max", "hourglass_mean", "external_work", "boundary_work",
-                                "plastic",       "fracture",       "balance"};
+                                "plastic",       "fracture",       "contact_work",  "balance"};
   for (auto& b : scene.bodies)
     for (const char* q : kBodyEnergyColumns) cols.push_back(b.name + "." + q);
   return cols;
@@ -59,6 +59,7 @@ std::vector<double> energy_row(double time, const EnergySample& e) {
     sum.boundary_work += b.boundary_work;
     sum.plastic += b.plastic;
     sum.fracture += b.fracture;
+    sum.contact_work += b.contact_work;
   }
   sum.kinetic = e.kinetic;
   sum.strain = e.strain;
@@ -72,9 +73,11 @@ std::vector<double> energy_row(double time, const EnergySample& e) {
                           sum.boundary_work,
                           sum.plastic,
                           sum.fracture,
+                          sum.contact_work,
                           sum.balance()};
   for (auto& b : e.bodies)
-    row.insert(row.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.balance()});
+    row.insert(row.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.contact_work,
+                           b.balance()});
   return row;
 }
 
@@ -87,6 +90,7 @@ std::vector<std::string> boundary_force_columns(const Scene& scene) {
   for (auto& c : scene.clamps) add(c.name);
   for (auto& c : scene.conditions) add(c.name);
   for (auto& w : scene.walls) add(w.name);
+  for (auto& r : scene.contact.rigid_bodies) add(r);
   return cols;
 }
 

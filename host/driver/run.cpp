@@ -117,7 +117,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   for (auto& mp : scene.measure_planes)
     measure_csv.push_back(std::make_unique<CsvWriter>(dir + "/measure_" + mp.name + ".csv", measure_columns(scene)));
   std::unique_ptr<CsvWriter> forces_csv;
-  if (!scene.clamps.empty() || !scene.conditions.empty() || !scene.walls.empty())
+  if (!scene.clamps.empty() || !scene.conditions.empty() || !scene.walls.empty() || !scene.contact.rigid_bodies.empty())
     forces_csv = std::make_unique<CsvWriter>(dir + "/boundary_forces.csv", boundary_force_columns(scene));
   PvdIndex pvd(dir + "/snapshots.pvd");
   std::vector<RigidBodyMotion> rigid;

@@ -102,6 +102,19 @@ struct ConditionSpec {
   double t_end = 1e300;
 };
 
+// Contact (kernels/contact/contact_force.hpp): which bodies touch each other,
+// which touch themselves, which rigid bodies are partners, and the pair law
+// (seed 001 Listing 1: contcoeff, restcoef, kfric).
+struct ContactSpec {
+  bool enabled = false;
+  std::vector<std::string> bodies;        // every body when the scene lists none
+  std::vector<std::string> self_contact;  // bodies whose distant parts may touch
+  std::vector<std::string> rigid_bodies;  // kinematic rigid bodies that push the bodies
+  double stiffness = 1.0;                 // kappa = contcoeff
+  double restitution = 1.0;               // e of an isolated pair
+  double friction = 0.0;                  // Coulomb mu
+};
+
 struct ProbeSpec {
   std::string name;
   Point3 point{0, 0, 0};
@@ -159,6 +172,7 @@ struct Scene {
   std::vector<RigidBodySpec> rigid_bodies;
   std::vector<ConditionSpec> conditions;  // velocity_conditions, then loads
   std::vector<WallSpec> walls;
+  ContactSpec contact;
   std::vector<ProbeSpec> probes;
   std::vector<MeasurePlaneSpec> measure_planes;
   OutputSpec output;

@@ -267,6 +267,12 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
 
   read_rigid_bodies(root, scene);
   read_conditions(root, scene, names, boundary_names);
+  read_contact(root, scene);
+  for (const std::string& r : scene.contact.rigid_bodies)
+    if (!boundary_names.insert(r).second)
+      throw SceneError("/contact/rigid_bodies", "\"" + r + "\"",
+                       "a rigid body whose name no clamp, condition, load or wall has (its reaction is a column of "
+                       "boundary_forces.csv)");
   read_measure_planes(root, scene, names);
 
   auto probes = root.array("probes", false);

@@ -46,6 +46,9 @@ void read_conditions(JsonNode& root, Scene& scene, const std::set<std::string>& 
 // rigid_bodies[] into scene.rigid_bodies (rigid_body_reader.cpp); after the bodies.
 void read_rigid_bodies(JsonNode& root, Scene& scene);
 
+// contact into scene.contact (contact_reader.cpp); after bodies and rigid bodies.
+void read_contact(JsonNode& root, Scene& scene);
+
 // measure_planes[] into scene.measure_planes (measure_plane_reader.cpp).
 void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 

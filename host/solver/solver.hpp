@@ -28,12 +28,15 @@ struct Snapshot {
 
 // Energies of one body (J; per metre of depth in 2-D). Work done on the body
 // by its loads (external) and by its velocity conditions and clamps
-// (boundary), accumulated over the run. Plastic: the plastic work of J2
+// (boundary), and by contact forces (contact: of other bodies, rigid bodies
+// and its own distant parts), accumulated over the run. Plastic: the plastic work of J2
 // bodies (j2_plastic.hpp); fracture dissipation is zero until that model exists.
 struct BodyEnergy {
-  double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0;
-  // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc.
-  double balance() const { return kinetic + strain + plastic + fracture - external_work - boundary_work; }
+  double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0, contact_work = 0;
+  // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc - W_contact.
+  double balance() const {
+    return kinetic + strain + plastic + fracture - external_work - boundary_work - contact_work;
+  }
 };
 
 struct EnergySample {
@@ -87,7 +90,8 @@ class Solver {
   virtual Snapshot snapshot() = 0;
   virtual EnergySample energies() = 0;
   virtual std::vector<ProbeSample> probes() = 0;
-  // Clamps, then velocity conditions and loads in scene order.
+  // Clamps, velocity conditions and loads in scene order, walls, then the
+  // rigid bodies in contact (the force each exerts on the bodies).
   virtual std::vector<BoundaryForceSample> boundary_forces() = 0;
   virtual std::vector<MeasureSample> measures() = 0;  // scene.measure_planes order
   virtual const StageTimers& timers() const = 0;

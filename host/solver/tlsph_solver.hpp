@@ -6,6 +6,8 @@
 //                    hourglass variant matrices            (eq. 3, 7, 25-28)
 //   force            per body: gathered pair sums (eq. 20, 27, 32), then
 //                    v to t + dt                           (eq. 36)
+//   contact          pair forces at the half-step positions (tlsph_contact.hpp),
+//                    v += dt f/m like a load
 //   loads            per load: v += dt f/m at t + dt/2 (conditions.hpp)
 //   boundary         velocity conditions at t + dt, then clamps, with reactions
 //   deformation_rate dF/dt at the new velocity (eq. 22), F, u to t + dt
@@ -33,6 +35,7 @@
 #include "host/solver/solver.hpp"
 #include "host/solver/tlsph_body_kernels.hpp"
 #include "host/solver/tlsph_conditions.hpp"
+#include "host/solver/tlsph_contact.hpp"
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
 #include "kernels/tlsph/hourglass_indicator.hpp"
@@ -135,8 +138,9 @@ class TlsphSolver final : public Solver {
             probes_need_stress_ || f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain";
     bool loads = false;
     for (const auto& c : scene.conditions) loads = loads || c.type != ConditionSpec::Type::velocity;
-    for (const char* name : {"stress", "force", "loads", "boundary", "deformation_rate", "time_step"})
-      if (loads || std::string(name) != "loads") timers_.id(name);
+    for (const char* name : {"stress", "force", "contact", "loads", "boundary", "deformation_rate", "time_step"})
+      if ((loads || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact"))
+        timers_.id(name);
     has_loads_ = loads;
     conditions_.compile(scene_);
   }
@@ -194,6 +198,11 @@ class TlsphSolver final : public Solver {
     std::vector<Index> where(ids.size());
     for (size_t k = 0; k < ids.size(); ++k) where[size_t(ids[k])] = Index(k);
     conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
+    if (scene_.contact.enabled) {
+      std::vector<BodyProperties> body_props;
+      for (size_t b = 0; b < scene_.bodies.size(); ++b) body_props.push_back(props(b));
+      contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)));
+    }
     std::vector<Index> probe_index;
     probe_offsets_.assign(1, 0);
     for (const auto& members : init_.probe_particles) {
@@ -261,6 +270,7 @@ class TlsphSolver final : public Solver {
     run("force", [&] {
       for (auto& k : bodies_) k->acceleration(v_, Real(dt));
     });
+    if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt); });
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1); });
     run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1); });
     StepStatistics<Real> stats;
@@ -332,6 +342,7 @@ class TlsphSolver final : public Solver {
       be.plastic = s.plastic;
       be.external_work = conditions_.external_work(b);
       be.boundary_work = conditions_.boundary_work(b);
+      be.contact_work = contact_.work(b);
       e.bodies.push_back(be);
     }
     compute_hourglass_indicator();
@@ -343,7 +354,11 @@ class TlsphSolver final : public Solver {
     return e;
   }
 
-  std::vector<BoundaryForceSample> boundary_forces() override { return conditions_.forces(); }
+  std::vector<BoundaryForceSample> boundary_forces() override {
+    std::vector<BoundaryForceSample> out = conditions_.forces();
+    for (const auto& f : contact_.forces()) out.push_back(f);
+    return out;
+  }
 
   std::vector<MeasureSample> measures() override {
     std::vector<MeasureSample> out(measure_offsets_.size() - 1);
@@ -567,6 +582,8 @@ class TlsphSolver final : public Solver {
       dt = std::min(dt, props(b).h / (props(b).c0 * stretch + vmax));
       if (amax > 0) dt = std::min(dt, std::sqrt(props(b).h / amax));
     }
+    // Contact springs and dashpots (kernels/contact/contact_force.hpp).
+    if (contact_.inverse_stable_step() > 0) dt = std::min(dt, 1.0 / contact_.inverse_stable_step());
     dt_next_ = scene_.solver.cfl * dt;
   }
 
@@ -628,6 +645,7 @@ class TlsphSolver final : public Solver {
   std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
   TlsphConditions<B, D, Real> conditions_;
+  TlsphContact<B, D, Real> contact_;
   bool has_loads_ = false;
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};

@@ -110,8 +110,8 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   std::getline(energies, header);
   EXPECT_EQ(header,
             "time,kinetic,strain,total,hourglass_max,hourglass_mean,external_work,boundary_work,plastic,fracture,"
-            "balance,block.kinetic,block.strain,block.plastic,block.fracture,block.external_work,"
-            "block.boundary_work,block.balance");
+            "contact_work,balance,block.kinetic,block.strain,block.plastic,block.fracture,block.external_work,"
+            "block.boundary_work,block.contact_work,block.balance");
   std::ifstream forces(fs::path(out()) / "boundary_forces.csv");
   std::getline(forces, header);
   EXPECT_EQ(header, "time,clamp0.x,clamp0.y");
@@ -209,6 +209,23 @@ TEST_F(Cli, BadPlasticMaterials) {
                      "/bodies/0/material/viscosity: got hardening as well; expected either hardening");
   expect_input_error("run " + scene(nh, R"("model": "neo_hookean", "yield_stress": 2e4)") + " -o " + out(),
                      "/bodies/0/material/yield_stress: got an unknown key");
+}
+
+TEST_F(Cli, BadContact) {
+  const std::string probes = R"("probes":)";
+  auto with = [&](const std::string& contact) { return scene(probes, "\"contact\": " + contact + ", " + probes); };
+  expect_input_error("run " + with("{}") + " -o " + out(),
+                     "/contact: got contact with one body and no partner; expected two bodies in contact.bodies");
+  expect_input_error("run " + with(R"({"self_contact": ["plate"]})") + " -o " + out(),
+                     "/contact/self_contact/0: got \"plate\"; expected the name of a body listed in contact.bodies");
+  expect_input_error("run " + with(R"({"rigid_bodies": ["punch"]})") + " -o " + out(),
+                     "/contact/rigid_bodies/0: got \"punch\"; expected the name of a rigid body");
+  expect_input_error("run " + with(R"({"self_contact": ["block"], "restitution": 0})") + " -o " + out(),
+                     "/contact/restitution: got 0; expected a restitution in (0, 1]");
+  expect_input_error("run " + with(R"({"self_contact": ["block"], "friction": -0.1})") + " -o " + out(),
+                     "/contact/friction: got -0.1; expected a number >= 0");
+  expect_input_error("run " + with(R"({"self_contact": ["block"], "stiffnes": 2})") + " -o " + out(),
+                     "/contact/stiffnes: got an unknown key");
 }
 
 TEST_F(Cli, NonPositiveDensityAndSpacing) {

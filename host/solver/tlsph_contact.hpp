@@ -1,0 +1,246 @@
+// Contact of a TLSPH run on one backend (scene.contact): the candidates (the
+// particles of the bodies in contact, then the surface markers of the rigid
+// bodies that push them), the current-configuration cell search of each step
+// and the pair forces of kernels/contact. Runs after the force stage, at the
+// half-step positions, like a load. Keeps per body the work of the contact
+// forces (energies.csv) and per rigid body the force it exerts on the bodies
+// (boundary_forces.csv). Include after the backend header.
+#pragma once
+#include <thrust/fill.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "host/backend/algorithms.hpp"
+#include "host/neighbors/reference_neighbor_list.hpp"
+#include "host/scene/body_properties.hpp"
+#include "host/scene/particle_generator.hpp"
+#include "host/scene/rigid_body.hpp"
+#include "host/solver/solver.hpp"
+#include "host/solver/tlsph_views.hpp"
+#include "kernels/contact/contact_functors.hpp"
+
+namespace mfsd {
+
+template <class B, int D, class Real>
+class TlsphContact {
+ public:
+  bool enabled() const { return enabled_; }
+
+  // `volume`: the particles' volumes in the solver's (reordered) order.
+  void setup(const Scene& scene, const InitialParticles& init, const std::vector<BodyRange>& ranges,
+             const std::vector<BodyProperties>& props, const std::vector<Real>& volume) {
+    const ContactSpec& spec = scene.contact;
+    enabled_ = spec.enabled;
+    work_.assign(scene.bodies.size(), 0.0);
+    if (!enabled_) return;
+    law_ = ContactPairLaw<Real>{Real(contact_damping_ratio(spec.restitution)), Real(spec.friction)};
+    stiffness_factor_ = spec.stiffness;
+    std::map<std::string, size_t> body_index, rigid_index;
+    for (size_t b = 0; b < scene.bodies.size(); ++b) body_index[scene.bodies[b].name] = b;
+    for (size_t r = 0; r < scene.rigid_bodies.size(); ++r) rigid_index[scene.rigid_bodies[r].name] = r;
+
+    std::vector<Index> particle;
+    std::vector<Real> mass;
+    std::vector<int> group;
+    std::vector<ContactGroup<Real>> groups;
+    for (const std::string& name : spec.bodies) {
+      const size_t b = body_index.at(name);
+      const bool self = std::find(spec.self_contact.begin(), spec.self_contact.end(), name) != spec.self_contact.end();
+      const double support = 2.0 * props[b].h;
+      const double rho = scene.bodies[b].material.density;
+      groups.push_back(ContactGroup<Real>{Real(scene.bodies[b].spacing), Real(rho * props[b].c0 * props[b].c0),
+                                          Real(support * support), self ? 1 : 0, 0});
+      Span s{b, Index(particle.size()), 0};
+      for (Index p = ranges[b].begin; p < ranges[b].end; ++p) {
+        particle.push_back(p);
+        mass.push_back(Real(rho * double(volume[size_t(p)])));
+        group.push_back(int(groups.size() - 1));
+      }
+      s.end = Index(particle.size());
+      body_spans_.push_back(s);
+      max_spacing_ = std::max(max_spacing_, scene.bodies[b].spacing);
+    }
+    particles_ = Index(particle.size());
+    first_rigid_group_ = int(groups.size());
+    std::vector<Vec<D, Real>> markers;
+    for (const std::string& name : spec.rigid_bodies) {
+      const size_t r = rigid_index.at(name);
+      const RigidBodySpec& rs = scene.rigid_bodies[r];
+      groups.push_back(ContactGroup<Real>{Real(rs.marker_spacing), Real(0), Real(0), 0, 1});
+      motion_.emplace_back(rs, scene.constants, "/rigid_bodies/" + std::to_string(r));
+      Span s{r, Index(particles_ + markers.size()), 0};
+      for (const Point3& X : init.rigid_markers[r]) {
+        Vec<D, Real> x;
+        for (int a = 0; a < D; ++a) x.v[a] = Real(X[a]);
+        markers.push_back(x);
+        mass.push_back(Real(0));
+        group.push_back(int(groups.size() - 1));
+      }
+      s.end = Index(particles_ + markers.size());
+      rigid_spans_.push_back(s);
+      rigid_names_.push_back(name);
+      max_spacing_ = std::max(max_spacing_, rs.marker_spacing);
+    }
+    rigid_force_.assign(rigid_spans_.size(), Point3{0, 0, 0});
+    count_ = Index(particle.size() + markers.size());
+    from_host<B>(particle, particle_);
+    from_host<B>(markers, marker_position_);
+    from_host<B>(mass, mass_);
+    from_host<B>(group, group_);
+    from_host<B>(groups, groups_);
+    placement_.resize(rigid_spans_.size());
+    x_.resize(size_t(count_));
+    v_.resize(size_t(count_));
+    force_.resize(size_t(count_));
+    keys_.resize(size_t(count_));
+    order_.resize(size_t(count_));
+  }
+
+  // Contact forces at the half-step positions (t: start of the step); v and a
+  // of the touching particles change like under a load.
+  void apply(const TlsphViews<D, Real>& view, double t, double dt) {
+    if (!enabled_ || count_ == 0) return;
+    place_rigid_bodies(t, dt);
+    parallel_for<B>(
+        count_, ContactCandidateFunctor<D, Real>{particles_, raw(particle_), view.reference_position, view.displacement,
+                                                 view.velocity, view.acceleration, Real(dt), raw(marker_position_),
+                                                 raw(group_), first_rigid_group_, raw(placement_), raw(x_), raw(v_)});
+    const CellGrid<D> grid = make_grid();
+    parallel_for<B>(count_, ContactKeyFunctor<D, Real>{grid, raw(x_), raw(keys_)});
+    sequence<B, Index>(order_);
+    sort_by_key<B, std::int64_t, Index>(keys_, order_);
+    thrust::fill(BackendTraits<B>::policy(), start_.begin(), start_.begin() + cells_, Index(0));
+    thrust::fill(BackendTraits<B>::policy(), end_.begin(), end_.begin() + cells_, Index(0));
+    parallel_for<B>(count_, CellRangeFunctor{raw(keys_), count_, raw(start_), raw(end_)});
+    const ContactForceFunctor<D, Real> f{grid,
+                                         raw(start_),
+                                         raw(end_),
+                                         raw(order_),
+                                         raw(x_),
+                                         raw(v_),
+                                         view.reference_position,
+                                         raw(particle_),
+                                         raw(mass_),
+                                         raw(group_),
+                                         raw(groups_),
+                                         law_,
+                                         Real(stiffness_factor_),
+                                         raw(force_)};
+    inverse_step_ = double(transform_reduce<B>(0, count_, f, Real(0), ContactMax<Real>{}));
+    for (const Span& s : body_spans_) {
+      const ContactSums sum =
+          transform_reduce<B>(s.begin, s.end,
+                              ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_), Real(dt),
+                                                           view.velocity, view.acceleration},
+                              ContactSums::zero(), ContactSumsCombine{});
+      work_[s.index] += sum.power * dt;
+    }
+    for (size_t r = 0; r < rigid_spans_.size(); ++r) {
+      const ContactSums sum =
+          transform_reduce<B>(rigid_spans_[r].begin, rigid_spans_[r].end, ContactForceSumFunctor<D, Real>{raw(force_)},
+                              ContactSums::zero(), ContactSumsCombine{});
+      for (int a = 0; a < 3; ++a) rigid_force_[r][a] = -sum.force[a];  // on the bodies
+    }
+  }
+
+  // 1 / the largest stable step of the last step's contacts (0 without
+  // contacts; contact_force.hpp).
+  double inverse_stable_step() const { return inverse_step_; }
+  double work(size_t body) const { return enabled_ ? work_[body] : 0.0; }
+
+  // The force each rigid body in contact exerts on the bodies, last step.
+  std::vector<BoundaryForceSample> forces() const {
+    std::vector<BoundaryForceSample> out;
+    for (size_t r = 0; r < rigid_names_.size(); ++r) out.push_back({rigid_names_[r], rigid_force_[r]});
+    return out;
+  }
+
+ private:
+  struct Span {
+    size_t index;  // body or rigid body
+    Index begin, end;
+  };
+
+  CellGrid<D> make_grid() {
+    const ContactBox<D> box =
+        transform_reduce<B>(0, count_, ContactBoxFunctor<D, Real>{raw(x_)}, empty_box(), ContactBoxCombine<D>{});
+    // Cell edge = the largest contact distance, widened when the box would
+    // need more than a few cells per candidate (a body that flew far away).
+    double cell = max_spacing_, cells = 1;
+    for (int a = 0; a < D; ++a) cells *= std::floor((box.hi[a] - box.lo[a]) / cell) + 2;
+    const double cap = 4.0 * double(count_) + 64.0;
+    if (cells > cap) cell *= std::pow(cells / cap, 1.0 / D) * 1.01;
+    const CellGrid<D> grid = make_cell_grid<D>(box.lo, box.hi, cell, 1);
+    cells_ = size_t(grid.cells_per_body);
+    if (start_.size() < cells_) {
+      start_.resize(cells_);
+      end_.resize(cells_);
+    }
+    return grid;
+  }
+
+  static ContactBox<D> empty_box() {
+    ContactBox<D> b;
+    for (int a = 0; a < D; ++a) b.lo[a] = std::numeric_limits<double>::infinity(), b.hi[a] = -b.lo[a];
+    return b;
+  }
+
+  // x = A X + b at t + dt/2; rates from the motion over the step.
+  void place_rigid_bodies(double t, double dt) {
+    if (motion_.empty()) return;
+    std::vector<RigidPlacement<D, Real>> host(motion_.size());
+    for (size_t r = 0; r < motion_.size(); ++r) {
+      auto affine = [&](double time, Mat<D, double>& A, Vec<D, double>& b) {
+        const Point3 o = motion_[r].position(Point3{0, 0, 0}, time);
+        for (int i = 0; i < D; ++i) b.v[i] = o[i];
+        for (int j = 0; j < D; ++j) {
+          Point3 e{0, 0, 0};
+          e[j] = 1;
+          const Point3 x = motion_[r].position(e, time);
+          for (int i = 0; i < D; ++i) A.m[i][j] = x[i] - o[i];
+        }
+      };
+      Mat<D, double> A, A0, A1;
+      Vec<D, double> b, b0, b1;
+      affine(t + 0.5 * dt, A, b);
+      affine(t, A0, b0);
+      affine(t + dt, A1, b1);
+      for (int i = 0; i < D; ++i) {
+        host[r].b.v[i] = Real(b.v[i]);
+        host[r].b_rate.v[i] = Real((b1.v[i] - b0.v[i]) / dt);
+        for (int j = 0; j < D; ++j) {
+          host[r].A.m[i][j] = Real(A.m[i][j]);
+          host[r].A_rate.m[i][j] = Real((A1.m[i][j] - A0.m[i][j]) / dt);
+        }
+      }
+    }
+    from_host<B>(host, placement_);
+  }
+
+  bool enabled_ = false;
+  ContactPairLaw<Real> law_{};
+  double stiffness_factor_ = 1, max_spacing_ = 0, inverse_step_ = 0;
+  Index particles_ = 0, count_ = 0;
+  int first_rigid_group_ = 0;
+  size_t cells_ = 0;
+  std::vector<Span> body_spans_, rigid_spans_;
+  std::vector<std::string> rigid_names_;
+  std::vector<RigidBodyMotion> motion_;
+  std::vector<Point3> rigid_force_;
+  std::vector<double> work_;
+  DeviceVector<B, Index> particle_, order_, start_, end_;
+  DeviceVector<B, Vec<D, Real>> marker_position_, x_, v_, force_;
+  DeviceVector<B, Real> mass_;
+  DeviceVector<B, int> group_;
+  DeviceVector<B, ContactGroup<Real>> groups_;
+  DeviceVector<B, RigidPlacement<D, Real>> placement_;
+  DeviceVector<B, std::int64_t> keys_;
+};
+
+}  // namespace mfsd

@@ -1,0 +1,240 @@
+// Contact stage functors (design.md: contact between bodies searches the
+// current configuration each step). The candidates are the particles of the
+// bodies that take part in contact, then the surface markers of the rigid
+// bodies that do. Per step:
+//   ContactCandidateFunctor  current position and velocity of each candidate
+//                            (particles: X + u at t + dt/2 and v^n = v - dt a,
+//                            the velocity at the start of the step; markers:
+//                            the prescribed placement x = A X + b and
+//                            v = A' X + b' at t + dt/2). Not the velocity
+//                            after the force stage: it holds dt times the
+//                            internal force that the contact force balances,
+//                            and the dashpot would take that for approach
+//                            (the punch force then changed 4 % with dt).
+//   ContactBoxFunctor        their bounding box (reduction)
+//   ContactKeyFunctor        cell key on a grid of edge >= the largest d0;
+//                            keys are sorted with the candidate index, each
+//                            cell's [start, end) found (CellRangeFunctor)
+//   ContactForceFunctor      per candidate, the pair forces of the candidates
+//                            in the 3^D cells around it (contact_force.hpp),
+//                            gathered without atomics; returns the particle's
+//                            inverse stable step (ContactRates), reduced to max
+//   ContactApplyFunctor      per body particle: v += dt f / m, a += f / m, and
+//                            the power of the contact force at the mid-step
+//                            velocity (like a load, conditions.hpp)
+#pragma once
+#include <cstdint>
+
+#include "kernels/contact/contact_force.hpp"
+#include "kernels/core/mat.hpp"
+#include "kernels/neighbors/cell_list.hpp"
+
+namespace mfsd {
+
+// What the candidates of one body or rigid body share.
+template <class Real>
+struct ContactGroup {
+  Real spacing;      // dp (rigid body: its marker spacing)
+  Real modulus;      // rho0 c0^2 (rigid body: 0 = infinitely stiff)
+  Real support2;     // self-contact needs |X_i - X_j|^2 >= support2 (kernel support squared)
+  int self_contact;  // 1: pairs within the group may touch (deformable bodies only)
+  int rigid;         // 1: a rigid body's markers
+};
+
+// The placement of a rigid body at the contact time: x = A X + b, v = A' X + b'.
+template <int D, class Real>
+struct RigidPlacement {
+  Mat<D, Real> A, A_rate;
+  Vec<D, Real> b, b_rate;
+};
+
+template <int D, class Real>
+struct ContactCandidateFunctor {
+  Index particles;        // candidates [0, particles) are body particles
+  const Index* particle;  // candidate -> particle index
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Vec<D, Real>* velocity;
+  const Vec<D, Real>* acceleration;
+  Real dt;
+  const Vec<D, Real>* marker_position;  // markers (candidates from `particles` on), shape as given
+  const int* group;
+  int first_rigid_group;
+  const RigidPlacement<D, Real>* placement;  // per rigid body
+  Vec<D, Real>* x;
+  Vec<D, Real>* v;
+
+  MFSD_HD void operator()(Index c) const {
+    if (c < particles) {
+      const Index p = particle[c];
+      x[c] = reference_position[p] + displacement[p];
+      v[c] = velocity[p] - acceleration[p] * dt;  // v^n
+      return;
+    }
+    const RigidPlacement<D, Real>& P = placement[group[c] - first_rigid_group];
+    const Vec<D, Real>& X = marker_position[c - particles];
+    x[c] = P.A * X + P.b;
+    v[c] = P.A_rate * X + P.b_rate;
+  }
+};
+
+template <int D>
+struct ContactBox {
+  double lo[D], hi[D];
+};
+
+template <int D>
+struct ContactBoxCombine {
+  MFSD_HD ContactBox<D> operator()(const ContactBox<D>& a, const ContactBox<D>& b) const {
+    ContactBox<D> r;
+    for (int k = 0; k < D; ++k) r.lo[k] = math::min(a.lo[k], b.lo[k]), r.hi[k] = math::max(a.hi[k], b.hi[k]);
+    return r;
+  }
+};
+
+template <int D, class Real>
+struct ContactBoxFunctor {
+  const Vec<D, Real>* x;
+  MFSD_HD ContactBox<D> operator()(Index c) const {
+    ContactBox<D> r;
+    for (int k = 0; k < D; ++k) r.lo[k] = r.hi[k] = double(x[c].v[k]);
+    return r;
+  }
+};
+
+template <int D, class Real>
+struct ContactKeyFunctor {
+  CellGrid<D> grid;
+  const Vec<D, Real>* x;
+  std::int64_t* key;
+  MFSD_HD void operator()(Index c) const {
+    int cell[D];
+    for (int a = 0; a < D; ++a) cell[a] = grid.coordinate(a, double(x[c].v[a]));
+    key[c] = grid.linear(cell);
+  }
+};
+
+template <int D, class Real>
+struct ContactForceFunctor {
+  CellGrid<D> grid;
+  const Index* start;  // per cell, into `order`
+  const Index* end;
+  const Index* order;  // cell-sorted position -> candidate
+  const Vec<D, Real>* x;
+  const Vec<D, Real>* v;
+  const Vec<D, Real>* X;  // reference positions of the particles (self-contact test)
+  const Index* particle;  // candidate -> particle (candidates of self-contact groups are particles)
+  const Real* mass;       // 0 for markers
+  const int* group;
+  const ContactGroup<Real>* groups;
+  ContactPairLaw<Real> law;
+  Real stiffness_factor;  // kappa (contcoeff)
+  Vec<D, Real>* force;
+
+  MFSD_HD Real operator()(Index i) const {
+    const Vec<D, Real> xi = x[i], vi = v[i];
+    const int gi = group[i];
+    const ContactGroup<Real> Gi = groups[gi];
+    const Real mi = mass[i];
+    int c[D], lo[D], hi[D];
+    for (int a = 0; a < D; ++a) {
+      c[a] = grid.coordinate(a, double(xi.v[a]));
+      lo[a] = c[a] > 0 ? c[a] - 1 : 0;
+      hi[a] = c[a] + 1 < grid.dims[a] ? c[a] + 1 : grid.dims[a] - 1;
+    }
+    Vec<D, Real> f = Vec<D, Real>::zero();
+    ContactRates<Real> rates{Real(0), Real(0)};
+    int cc[D];
+    auto visit_cell = [&](std::int64_t k) {
+      for (Index s = start[k]; s < end[k]; ++s) {
+        const Index j = order[s];
+        if (j == i) continue;
+        const int gj = group[j];
+        const ContactGroup<Real> Gj = groups[gj];
+        if (Gi.rigid && Gj.rigid) continue;
+        if (gi == gj && (!Gi.self_contact || squared_norm(X[particle[i]] - X[particle[j]]) < Gi.support2)) continue;
+        const Vec<D, Real> r = xi - x[j];
+        const Real d0 = Real(0.5) * (Gi.spacing + Gj.spacing);
+        const Real r2 = squared_norm(r);
+        if (!(r2 < d0 * d0) || r2 == Real(0)) continue;
+        const Real distance = math::sqrt(r2);
+        Real k = stiffness_factor * contact_modulus(Gi.modulus, Gj.modulus);
+        if (D == 3) k *= d0;  // k = kappa M dp^(D-2)
+        const Real m_eff = contact_reduced_mass(mi, mass[j]);
+        f += contact_pair_force<D, Real>(law, r, distance, d0 - distance, vi - v[j], k, m_eff, rates);
+      }
+    };
+    if constexpr (D == 2) {
+      for (cc[1] = lo[1]; cc[1] <= hi[1]; ++cc[1])
+        for (cc[0] = lo[0]; cc[0] <= hi[0]; ++cc[0]) visit_cell(grid.linear(cc));
+    } else {
+      for (cc[2] = lo[2]; cc[2] <= hi[2]; ++cc[2])
+        for (cc[1] = lo[1]; cc[1] <= hi[1]; ++cc[1])
+          for (cc[0] = lo[0]; cc[0] <= hi[0]; ++cc[0]) visit_cell(grid.linear(cc));
+    }
+    force[i] = f;
+    return rates.inverse_step();
+  }
+};
+
+template <class Real>
+struct ContactMax {
+  MFSD_HD Real operator()(Real a, Real b) const { return math::max(a, b); }
+};
+
+// Power and force sum of the contact on one body (or a rigid body's markers).
+struct ContactSums {
+  double power;
+  double force[3];
+  MFSD_HD static ContactSums zero() { return ContactSums{0.0, {0.0, 0.0, 0.0}}; }
+};
+
+struct ContactSumsCombine {
+  MFSD_HD ContactSums operator()(const ContactSums& a, const ContactSums& b) const {
+    ContactSums r;
+    r.power = a.power + b.power;
+    for (int k = 0; k < 3; ++k) r.force[k] = a.force[k] + b.force[k];
+    return r;
+  }
+};
+
+// Candidates [begin, end) of one body: c -> particle[c].
+template <int D, class Real>
+struct ContactApplyFunctor {
+  const Index* particle;
+  const Vec<D, Real>* force;
+  const Real* mass;
+  Real dt;
+  Vec<D, Real>* velocity;
+  Vec<D, Real>* acceleration;
+
+  MFSD_HD ContactSums operator()(Index c) const {
+    ContactSums s = ContactSums::zero();
+    const Vec<D, Real> f = force[c];
+    const Index p = particle[c];
+    const Vec<D, Real> a_c = f * (Real(1) / mass[c]);
+    const Vec<D, Real> v_old = velocity[p] - acceleration[p] * dt;  // v^n
+    const Vec<D, Real> v_mid = v_old + (acceleration[p] + a_c) * (Real(0.5) * dt);
+    velocity[p] += a_c * dt;
+    acceleration[p] += a_c;
+    for (int a = 0; a < D; ++a) {
+      s.power += double(f.v[a]) * double(v_mid.v[a]);
+      s.force[a] = double(f.v[a]);
+    }
+    return s;
+  }
+};
+
+// Force sum over a rigid body's markers [begin, end) (the force the bodies
+// exert on it).
+template <int D, class Real>
+struct ContactForceSumFunctor {
+  const Vec<D, Real>* force;
+  MFSD_HD ContactSums operator()(Index c) const {
+    ContactSums s = ContactSums::zero();
+    for (int a = 0; a < D; ++a) s.force[a] = double(force[c].v[a]);
+    return s;
+  }
+};
+
+}  // namespace mfsd

@@ -1,0 +1,52 @@
+// Contact with kinematic rigid bodies (contact.rigid_bodies): a rigid punch
+// pressed into a soft block on a clamped base
+// (tests/regression/scenes/punched_block_2d.json). The force the punch
+// exerts (boundary_forces.csv column "punch") and the base's reaction add up
+// to the block's momentum change, they balance once the punch holds still,
+// and no particle centre comes closer to the punch face than a stated
+// fraction of dp inside the half-spacing layer the contact keeps.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "scene_runner.hpp"
+
+using namespace mfsd;
+
+TEST(ContactRigid, PunchForceBalancesTheBaseAndKeepsTheFace) {
+  const SceneDocument doc = test::load_config("scenes/punched_block_2d.json", {});
+  const InitialParticles particles = generate_particles(doc.scene);
+  auto solver = make_solver(doc.scene, particles, SolverOptions{});
+  solver->initialize();
+  const double dp = 0.0005, H = 0.01, vp = 0.05, t1 = 0.02;
+  double impulse = 0, p0 = solver->energies().momentum[1], t_prev = 0, min_gap = 1e300, worst_impulse = 0;
+  std::vector<BoundaryForceSample> f;
+  long steps = 0;
+  while (solver->time() < 0.04 * (1 - 1e-12)) {
+    solver->limit_next_dt(0.04 - solver->time());
+    solver->step();
+    ++steps;
+    f = solver->boundary_forces();
+    ASSERT_EQ(f.size(), 2u);
+    ASSERT_EQ(f[1].name, "punch");
+    const double dt = solver->time() - t_prev;
+    t_prev = solver->time();
+    impulse += (f[0].force[1] + f[1].force[1]) * dt;
+    // d p / dt = base + punch forces (internal forces cancel); p at t^{n+1}.
+    worst_impulse = std::max(worst_impulse, std::abs(solver->energies().momentum[1] - p0 - impulse));
+    const double face = H + dp - vp * std::min(solver->time(), t1);  // punch bottom
+    const Snapshot s = solver->snapshot();
+    for (size_t i = 0; i < s.n; ++i)
+      if (std::abs(s.position[3 * i] - 0.01) < 0.0025 - dp / 2)  // under the punch
+        min_gap = std::min(min_gap, face - s.position[3 * i + 1]);
+    if (steps % 20 == 0 || solver->time() > 0.0399)
+      std::printf("t %.6g base %.6g punch %.6g\n", solver->time(), f[0].force[1], f[1].force[1]);
+  }
+  std::printf("min gap %.4g dp, momentum vs impulse %.3g, punch %.5g N/m, base %.5g N/m\n", min_gap / dp, worst_impulse,
+              f[1].force[1], f[0].force[1]);
+  EXPECT_LT(f[1].force[1], -100.0);  // the punch presses down
+  EXPECT_NEAR(f[0].force[1], -f[1].force[1], 0.01 * std::abs(f[1].force[1]));
+  EXPECT_GT(min_gap, 0.3 * dp);
+}
