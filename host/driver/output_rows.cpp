@@ -47,12 +47,16 @@ std::vector<std::string> energy_columns(const Scene& scene) {
   std::vector<std::string> cols{"time",          "kinetic",        "strain",        "total",
                                 "hourglass_max", "hourglass_mean", "external_work", "boundary_work",
                                 "plastic",       "fracture",       "contact_work",  "balance"};
-  for (auto& b : scene.bodies)
+  const char* axes[3] = {"x", "y", "z"};
+  for (int a = 0; a < scene.dimension; ++a) cols.push_back(std::string("momentum.") + axes[a]);
+  for (auto& b : scene.bodies) {
     for (const char* q : kBodyEnergyColumns) cols.push_back(b.name + "." + q);
+    for (int a = 0; a < scene.dimension; ++a) cols.push_back(b.name + ".momentum." + axes[a]);
+  }
   return cols;
 }
 
-std::vector<double> energy_row(double time, const EnergySample& e) {
+std::vector<double> energy_row(double time, const EnergySample& e, int dimension) {
   BodyEnergy sum;
   for (auto& b : e.bodies) {
     sum.external_work += b.external_work;
@@ -75,9 +79,12 @@ std::vector<double> energy_row(double time, const EnergySample& e) {
                           sum.fracture,
                           sum.contact_work,
                           sum.balance()};
-  for (auto& b : e.bodies)
+  for (int a = 0; a < dimension; ++a) row.push_back(e.momentum[a]);
+  for (auto& b : e.bodies) {
     row.insert(row.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.contact_work,
                            b.balance()});
+    for (int a = 0; a < dimension; ++a) row.push_back(b.momentum[a]);
+  }
   return row;
 }
 

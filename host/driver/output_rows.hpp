@@ -14,7 +14,7 @@ std::vector<std::string> probe_columns(const Scene& scene);
 std::vector<double> probe_row(const Scene& scene, double time, const std::vector<ProbeSample>& s);
 
 std::vector<std::string> energy_columns(const Scene& scene);
-std::vector<double> energy_row(double time, const EnergySample& e);
+std::vector<double> energy_row(double time, const EnergySample& e, int dimension);
 
 std::vector<std::string> boundary_force_columns(const Scene& scene);
 std::vector<double> boundary_force_row(const Scene& scene, double time, const std::vector<BoundaryForceSample>& s);

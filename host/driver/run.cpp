@@ -139,7 +139,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     }
     if (snapshot) {
       const EnergySample e = solver->energies();
-      energies_csv.row(energy_row(solver->time(), e));
+      energies_csv.row(energy_row(solver->time(), e, scene.dimension));
       if (scene.output.vtu) {
         char name[64];
         std::snprintf(name, sizeof name, "snapshots/%s_%05d.vtu", scene.name.c_str(), snapshot_count);

@@ -33,6 +33,7 @@ struct Snapshot {
 // bodies (j2_plastic.hpp); fracture dissipation is zero until that model exists.
 struct BodyEnergy {
   double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0, contact_work = 0;
+  Point3 momentum{0, 0, 0};  // kg m/s (2-D: per metre of depth)
   // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc - W_contact.
   double balance() const {
     return kinetic + strain + plastic + fracture - external_work - boundary_work - contact_work;

@@ -170,9 +170,10 @@ class TlsphContact {
   CellGrid<D> make_grid() {
     const ContactBox<D> box =
         transform_reduce<B>(0, count_, ContactBoxFunctor<D, Real>{raw(x_)}, empty_box(), ContactBoxCombine<D>{});
-    // Cell edge = the largest contact distance, widened when the box would
-    // need more than a few cells per candidate (a body that flew far away).
-    double cell = max_spacing_, cells = 1;
+    // Cell edge = the reach of the largest contact distance (pairs about to
+    // touch enter the time-step bound), widened when the box would need more
+    // than a few cells per candidate (a body that flew far away).
+    double cell = kContactRateReach * max_spacing_, cells = 1;
     for (int a = 0; a < D; ++a) cells *= std::floor((box.hi[a] - box.lo[a]) / cell) + 2;
     const double cap = 4.0 * double(count_) + 64.0;
     if (cells > cap) cell *= std::pow(cells / cap, 1.0 / D) * 1.01;

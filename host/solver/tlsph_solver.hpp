@@ -343,6 +343,7 @@ class TlsphSolver final : public Solver {
       be.external_work = conditions_.external_work(b);
       be.boundary_work = conditions_.boundary_work(b);
       be.contact_work = contact_.work(b);
+      for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
     }
     compute_hourglass_indicator();

@@ -58,21 +58,27 @@ struct ContactRates {
   }
 };
 
-// The force on i from j; adds the pair's rates to `rates`.
+// Adds a pair's spring and dashpots to `rates` (pairs in contact, and pairs
+// about to touch: the step on which a pair first touches must be stable).
+template <class Real>
+MFSD_HD inline void add_contact_rates(const ContactPairLaw<Real>& law, Real k, Real m_eff, ContactRates<Real>& rates) {
+  const Real critical = Real(2) * math::sqrt(k * m_eff);
+  const Real zeta_t = law.friction > Real(0) ? ContactPairLaw<Real>::tangential_damping_ratio : Real(0);
+  rates.omega2 += k / m_eff;
+  rates.gamma += (law.damping_ratio + zeta_t) * critical / m_eff;
+}
+
+// The force on i from j (touching: overlap > 0).
 template <int D, class Real>
 MFSD_HD inline Vec<D, Real> contact_pair_force(const ContactPairLaw<Real>& law, const Vec<D, Real>& r, Real distance,
-                                               Real overlap, const Vec<D, Real>& v, Real k, Real m_eff,
-                                               ContactRates<Real>& rates) {
+                                               Real overlap, const Vec<D, Real>& v, Real k, Real m_eff) {
   const Vec<D, Real> n = r / distance;
   const Real vn = dot(v, n);
   const Real critical = Real(2) * math::sqrt(k * m_eff);                                // 2 sqrt(k m*)
   const Real fn = math::max(Real(0), k * overlap - law.damping_ratio * critical * vn);  // normal
   Vec<D, Real> f = n * fn;
-  rates.omega2 += k / m_eff;
-  rates.gamma += law.damping_ratio * critical / m_eff;
   if (law.friction > Real(0)) {
     const Real ct = ContactPairLaw<Real>::tangential_damping_ratio * critical;
-    rates.gamma += ct / m_eff;
     const Vec<D, Real> vt = v - n * vn;
     const Real vt_norm = norm(vt);
     if (vt_norm > Real(0)) {

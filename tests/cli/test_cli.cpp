@@ -110,8 +110,9 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   std::getline(energies, header);
   EXPECT_EQ(header,
             "time,kinetic,strain,total,hourglass_max,hourglass_mean,external_work,boundary_work,plastic,fracture,"
-            "contact_work,balance,block.kinetic,block.strain,block.plastic,block.fracture,block.external_work,"
-            "block.boundary_work,block.contact_work,block.balance");
+            "contact_work,balance,momentum.x,momentum.y,block.kinetic,block.strain,block.plastic,block.fracture,"
+            "block.external_work,block.boundary_work,block.contact_work,block.balance,block.momentum.x,"
+            "block.momentum.y");
   std::ifstream forces(fs::path(out()) / "boundary_forces.csv");
   std::getline(forces, header);
   EXPECT_EQ(header, "time,clamp0.x,clamp0.y");
