@@ -20,14 +20,15 @@
 //                            gathered without atomics; returns the particle's
 //                            inverse stable step (ContactRates), reduced to max
 //   ContactApplyFunctor      per body particle: v += dt f / m, a += f / m, and
-//                            the power of the contact force at the mid-step
-//                            velocity (like a load, conditions.hpp)
+//                            the power of the contact force (step_force.hpp,
+//                            as loads)
 #pragma once
 #include <cstdint>
 
 #include "kernels/contact/contact_force.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/neighbors/cell_list.hpp"
+#include "kernels/tlsph/step_force.hpp"
 
 namespace mfsd {
 
@@ -222,15 +223,8 @@ struct ContactApplyFunctor {
     ContactSums s = ContactSums::zero();
     const Vec<D, Real> f = force[c];
     const Index p = particle[c];
-    const Vec<D, Real> a_c = f * (Real(1) / mass[c]);
-    const Vec<D, Real> v_old = velocity[p] - acceleration[p] * dt;  // v^n
-    const Vec<D, Real> v_mid = v_old + (acceleration[p] + a_c) * (Real(0.5) * dt);
-    velocity[p] += a_c * dt;
-    acceleration[p] += a_c;
-    for (int a = 0; a < D; ++a) {
-      s.power += double(f.v[a]) * double(v_mid.v[a]);
-      s.force[a] = double(f.v[a]);
-    }
+    s.power = add_step_force(f, mass[c], dt, velocity[p], acceleration[p]);
+    for (int a = 0; a < D; ++a) s.force[a] = double(f.v[a]);
     return s;
   }
 };

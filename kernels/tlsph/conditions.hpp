@@ -20,6 +20,7 @@
 #pragma once
 #include "kernels/core/mat.hpp"
 #include "kernels/expr/interpreter.hpp"
+#include "kernels/tlsph/step_force.hpp"
 
 namespace mfsd {
 
@@ -184,15 +185,8 @@ struct LoadFunctor {
       else
         f.v[a] = value[a] * mass;  // type 3 [m/s^2]
     }
-    const Vec<D, Real> a_ext = f * (Real(1) / mass);
-    const Vec<D, Real> v_old = velocity[i] - acceleration[i] * dt;  // v^n
-    const Vec<D, Real> v_mid = v_old + (acceleration[i] + a_ext) * (Real(0.5) * dt);
-    velocity[i] += a_ext * dt;
-    acceleration[i] += a_ext;
-    for (int a = 0; a < D; ++a) {
-      s.power += double(f.v[a]) * double(v_mid.v[a]);
-      s.force[a] = double(f.v[a]);
-    }
+    s.power = add_step_force(f, mass, dt, velocity[i], acceleration[i]);
+    for (int a = 0; a < D; ++a) s.force[a] = double(f.v[a]);
     return s;
   }
 };

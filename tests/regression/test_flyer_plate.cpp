@@ -54,10 +54,11 @@ FlyerRun fly(const std::vector<std::string>& extra) {
   r.plastic_fraction = (e.bodies[0].plastic + e.bodies[1].plastic) / E0;
   r.contact_work_fraction = (e.bodies[0].contact_work + e.bodies[1].contact_work) / E0;
   r.balance_ratio = (e.bodies[0].balance() + e.bodies[1].balance()) / E0;
-  std::printf("momentum error %.3g, closest approach %.4g dp, plate momentum %.4f of initial, plastic work %.4f, "
-              "contact work %.4f, balance %.5f of E0\n",
-              r.momentum_error, r.closest / 0.05, r.plate_momentum_ratio, r.plastic_fraction,
-              r.contact_work_fraction, r.balance_ratio);
+  std::printf(
+      "momentum error %.3g, closest approach %.4g dp, plate momentum %.4f of initial, plastic work %.4f, "
+      "contact work %.4f, balance %.5f of E0\n",
+      r.momentum_error, r.closest / 0.05, r.plate_momentum_ratio, r.plastic_fraction, r.contact_work_fraction,
+      r.balance_ratio);
   return r;
 }
 
@@ -80,6 +81,6 @@ TEST(FlyerPlate, ConservativeFormulationClosesTheBalance) {
   const FlyerRun r =
       fly({"solver.hourglass=none", "solver.kernel_correction_in_force=true", "solver.damping.factor=0"});
   EXPECT_NEAR(r.balance_ratio, 1.0, 2.5e-3);  // measured 1.0017 (1.0007 at L/dp = 50)
-  EXPECT_LT(r.contact_work_fraction, 0.0);  // restitution 0.95 takes energy
+  EXPECT_LT(r.contact_work_fraction, 0.0);    // restitution 0.95 takes energy
   EXPECT_LT(r.momentum_error, 1e-12);
 }
