@@ -16,6 +16,8 @@ const char* to_string(MaterialModel m) {
       return "saint_venant_kirchhoff";
     case MaterialModel::j2:
       return "j2";
+    case MaterialModel::j2_mandel:
+      return "j2_mandel";
   }
   return "?";
 }

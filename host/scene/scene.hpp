@@ -12,7 +12,7 @@
 
 namespace mfsd {
 
-enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2 };
+enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel };
 enum class HardeningLaw { linear, saturation, herschel_bulkley };
 enum class HourglassControl { none, laplacian, genog };
 enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
@@ -36,7 +36,9 @@ struct MaterialSpec {
   // dgamma/dt = ((|s| - sqrt(2/3) yield_stress) / viscosity)^(1 / flow_exponent).
   double viscosity = 0;
   double flow_exponent = 1;
-  bool plastic() const { return model == MaterialModel::j2; }
+  // j2_mandel (seed 001 eq. 32-52): the same elasticity and linear hardening,
+  // seed 001's return on C_p with the Mandel stress (j2_return_mapping.hpp).
+  bool plastic() const { return model == MaterialModel::j2 || model == MaterialModel::j2_mandel; }
 };
 
 struct BodySpec {

@@ -36,15 +36,21 @@ void line_column(const std::string& text, size_t byte, size_t& line, size_t& col
 
 MaterialSpec read_material(JsonNode m) {
   MaterialSpec spec;
-  const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2"});
+  const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel"});
   spec.model = model == "neo_hookean" ? MaterialModel::neo_hookean
-                                      : (model == "j2" ? MaterialModel::j2 : MaterialModel::saint_venant_kirchhoff);
+               : model == "j2"        ? MaterialModel::j2
+               : model == "j2_mandel" ? MaterialModel::j2_mandel
+                                      : MaterialModel::saint_venant_kirchhoff;
   spec.density = m.number("density", Range::positive());
   spec.youngs_modulus = m.number("youngs_modulus", Range::positive());
   spec.poisson_ratio = m.number("poisson_ratio", Range{-1.0, 0.5, true, true, "a number in (-1, 0.5)"});
   if (spec.plastic()) {
     spec.yield_stress = m.number("yield_stress", Range::positive());
     spec.hardening_modulus = m.number("hardening_modulus", 0.0, Range::non_negative());
+    if (spec.model == MaterialModel::j2_mandel) {
+      m.finish();  // linear hardening only (seed 001): other keys are errors
+      return spec;
+    }
     if (m.has("saturation_stress") || m.has("saturation_exponent")) {
       spec.hardening = HardeningLaw::saturation;
       spec.saturation_stress = m.number("saturation_stress", Range::positive());
@@ -236,7 +242,8 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"));
     if (body.material.plastic() && scene.solver.hourglass == HourglassControl::laplacian)
-      throw SceneError(node.key_path("material") + "/model", "\"j2\" with solver.hourglass \"laplacian\"",
+      throw SceneError(node.key_path("material") + "/model",
+                       std::string("\"") + to_string(body.material.model) + "\" with solver.hourglass \"laplacian\"",
                        "an elastic model, or hourglass \"genog\" or \"none\": the Laplacian form of seed 003 "
                        "is defined for elastic bodies only");
     JsonNode v = node.object_or_empty("initial_velocity");

@@ -510,6 +510,11 @@ class TlsphSolver final : public Solver {
     k.damping_normal = base * p.c0;
     k.damping_shear = base * (s.damping_form == DampingForm::split ? p.c_shear : p.c0);
     const MaterialSpec& m = spec.material;
+    if (m.model == MaterialModel::j2_mandel)
+      return make_variant(
+          J2Plastic<D, Real, Seed001Hardening<Real>>{
+              Real(p.K), Real(p.G), {Real(m.yield_stress), Real(m.hardening_modulus)}},
+          k);
     if (m.model == MaterialModel::j2) {
       if (m.hardening == HardeningLaw::herschel_bulkley)
         return make_variant(

@@ -210,6 +210,12 @@ TEST_F(Cli, BadPlasticMaterials) {
                      "/bodies/0/material/viscosity: got hardening as well; expected either hardening");
   expect_input_error("run " + scene(nh, R"("model": "neo_hookean", "yield_stress": 2e4)") + " -o " + out(),
                      "/bodies/0/material/yield_stress: got an unknown key");
+  expect_input_error(
+      "run " + scene(nh, R"("model": "j2_mandel", "yield_stress": 2e4, "viscosity": 10)") + " -o " + out(),
+      "/bodies/0/material/viscosity: got an unknown key");
+  expect_input_error("run " + scene(nh, R"("model": "j2_mandel", "yield_stress": 2e4)") + " -o " + out() +
+                         " --set solver.hourglass=laplacian",
+                     "\"j2_mandel\" with solver.hourglass \"laplacian\"");
 }
 
 TEST_F(Cli, BadContact) {
