@@ -17,7 +17,6 @@
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
-#include "host/neighbors/reference_neighbor_list.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/rigid_body.hpp"
@@ -111,7 +110,7 @@ class TlsphContact {
         count_, ContactCandidateFunctor<D, Real>{particles_, raw(particle_), view.reference_position, view.displacement,
                                                  view.velocity, view.acceleration, Real(dt), raw(marker_position_),
                                                  raw(group_), first_rigid_group_, raw(placement_), raw(x_), raw(v_)});
-    const CellGrid<D> grid = make_grid();
+    const ContactHashGrid<D> grid = make_grid();
     parallel_for<B>(count_, ContactKeyFunctor<D, Real>{grid, raw(x_), raw(keys_)});
     sequence<B, Index>(order_);
     sort_by_key<B, std::int64_t, Index>(keys_, order_);
@@ -167,29 +166,18 @@ class TlsphContact {
     Index begin, end;
   };
 
-  CellGrid<D> make_grid() {
-    const ContactBox<D> box =
-        transform_reduce<B>(0, count_, ContactBoxFunctor<D, Real>{raw(x_)}, empty_box(), ContactBoxCombine<D>{});
-    // Cell edge = the reach of the largest contact distance (pairs about to
-    // touch enter the time-step bound), widened when the box would need more
-    // than a few cells per candidate (a body that flew far away).
-    double cell = kContactRateReach * max_spacing_, cells = 1;
-    for (int a = 0; a < D; ++a) cells *= std::floor((box.hi[a] - box.lo[a]) / cell) + 2;
-    const double cap = 4.0 * double(count_) + 64.0;
-    if (cells > cap) cell *= std::pow(cells / cap, 1.0 / D) * 1.01;
-    const CellGrid<D> grid = make_cell_grid<D>(box.lo, box.hi, cell, 1);
-    cells_ = size_t(grid.cells_per_body);
-    if (start_.size() < cells_) {
-      start_.resize(cells_);
-      end_.resize(cells_);
+  // A table of at least 2 buckets per candidate (a power of two); cell edge
+  // = the reach of the largest contact distance (pairs about to touch enter
+  // the time-step bound).
+  ContactHashGrid<D> make_grid() {
+    std::uint64_t buckets = 64;
+    while (buckets < 2 * std::uint64_t(count_)) buckets *= 2;
+    if (start_.size() < buckets) {
+      start_.resize(buckets);
+      end_.resize(buckets);
     }
-    return grid;
-  }
-
-  static ContactBox<D> empty_box() {
-    ContactBox<D> b;
-    for (int a = 0; a < D; ++a) b.lo[a] = std::numeric_limits<double>::infinity(), b.hi[a] = -b.lo[a];
-    return b;
+    cells_ = size_t(buckets);
+    return ContactHashGrid<D>{1.0 / (kContactRateReach * max_spacing_), buckets - 1};
   }
 
   // x = A X + b at t + dt/2; rates from the motion over the step.
