@@ -75,6 +75,44 @@ void evaluate_initial_field(const Scene& scene, size_t b, const std::array<std::
   }
 }
 
+// A body's reference map (docs/scene-reference.md): the lattice points move
+// to X = map(x0), each volume scales by det(d map / d x0) (central differences
+// with step dp/100, exact for maps that are linear over that step); the
+// reference configuration is stress free.
+void map_reference(const Scene& scene, size_t b, const std::string& path, InitialParticles& P) {
+  const int dim = scene.dimension;
+  const long begin = P.body_range[b].begin, end = P.body_range[b].end;
+  const double h = 0.01 * scene.bodies[b].spacing;
+  // 'skip' keeps the lattice point.
+  std::vector<Point3> mapped = P.position, plus, minus;
+  evaluate_initial_field(scene, b, scene.bodies[b].reference_map, path, begin, end, P.position, mapped);
+  std::vector<std::array<double, 9>> jac(size_t(end - begin));
+  for (int c = 0; c < dim; ++c) {
+    std::vector<Point3> shifted_p = P.position, shifted_m = P.position;
+    for (long i = begin; i < end; ++i) shifted_p[size_t(i)][c] += h, shifted_m[size_t(i)][c] -= h;
+    plus = shifted_p;
+    minus = shifted_m;
+    evaluate_initial_field(scene, b, scene.bodies[b].reference_map, path, begin, end, shifted_p, plus);
+    evaluate_initial_field(scene, b, scene.bodies[b].reference_map, path, begin, end, shifted_m, minus);
+    for (long i = begin; i < end; ++i)
+      for (int a = 0; a < dim; ++a) jac[size_t(i - begin)][size_t(3 * a + c)] = (plus[i][a] - minus[i][a]) / (2 * h);
+  }
+  for (long i = begin; i < end; ++i) {
+    const auto& m = jac[size_t(i - begin)];
+    const double J = dim == 2 ? m[0] * m[4] - m[1] * m[3]
+                              : m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                                    m[2] * (m[3] * m[7] - m[4] * m[6]);
+    if (!(J > 0))
+      throw SceneError(
+          path,
+          "a map with det(d map / d x0) = " + std::to_string(J) + " at x0 = " + point_text(P.position[size_t(i)], dim),
+          "a map that keeps every particle's volume positive (no fold, no collapse)");
+    P.volume[size_t(i)] *= J;
+  }
+  for (long i = begin; i < end; ++i)
+    for (int a = 0; a < dim; ++a) P.position[size_t(i)][a] = mapped[size_t(i)][a];
+}
+
 // The particles of body b that a selection holds.
 std::vector<long> select_particles(const Scene& scene, size_t b, const SelectionSpec& sel, const std::string& path,
                                    const InitialParticles& P) {
@@ -224,15 +262,20 @@ InitialParticles generate_particles(const Scene& scene) {
     const BodyProperties props = body_properties(body, scene.solver, dim);
     P.body.resize(size_t(end), int(b));
     P.volume.resize(size_t(end), props.volume);
-
-    // Initial velocity: one expression per component of x0, y0, z0 and constants.
-    P.velocity.resize(size_t(end), Point3{0, 0, 0});
-    evaluate_initial_field(scene, b, body.initial_velocity, path + "/initial_velocity", begin, end, P.position,
-                           P.velocity);
   }
+  // Faces on the lattice, before a reference map moves the points.
   P.surface.assign(P.position.size(), 0);
   for (size_t b = 0; b < scene.bodies.size(); ++b)
     mark_surface(P.position, P.body_range[b].begin, P.body_range[b].end, scene.bodies[b].spacing, dim, P.surface);
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    const std::string path = "/bodies/" + std::to_string(b);
+    if (!body.reference_map[0].empty()) map_reference(scene, b, path + "/reference_map", P);
+    // Initial velocity: one expression per component of x0, y0, z0 and constants.
+    P.velocity.resize(P.position.size(), Point3{0, 0, 0});
+    evaluate_initial_field(scene, b, body.initial_velocity, path + "/initial_velocity", P.body_range[b].begin,
+                           P.body_range[b].end, P.position, P.velocity);
+  }
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& body = scene.bodies[b];
     if (body.initial_displacement[0].empty()) continue;

@@ -48,6 +48,7 @@ struct BodySpec {
   MaterialSpec material;
   std::array<std::string, 3> initial_velocity{"0", "0", "0"};   // expressions
   std::array<std::string, 3> initial_displacement{"", "", ""};  // expressions; "" = none
+  std::array<std::string, 3> reference_map{"", "", ""};         // X = map(lattice point); "" = none
 };
 
 struct ClampSpec {

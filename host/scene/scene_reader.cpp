@@ -250,6 +250,11 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < dim; ++a) body.initial_velocity[size_t(a)] = v.expression(axes[a], "0");
     v.finish();
+    if (auto r = node.optional_object("reference_map")) {
+      const char* identity[3] = {"x0", "y0", "z0"};
+      for (int a = 0; a < dim; ++a) body.reference_map[size_t(a)] = r->expression(axes[a], identity[a]);
+      r->finish();
+    }
     if (auto u = node.optional_object("initial_displacement")) {
       for (int a = 0; a < dim; ++a) body.initial_displacement[size_t(a)] = u->expression(axes[a], "0");
       u->finish();

@@ -9,7 +9,7 @@ j2_mandel here) against Chen et al. and Montans et al., without numbers. This
 study records that curve per resolution R/dp: axial shortening 1 - L(t)/L0
 from the top of the bar (the probe at the top's centre) and radial expansion
 R(t)/R0 - 1 from the foot (the probe at the bottom edge, plus dp/2 for the
-particle's half spacing), and the same curve with seed 000's return (model
+particle's half spacing), both relative to their values at t = 0, and the same curve with seed 000's return (model
 j2), which differs in the consistency condition and in the measure of
 equivalent plastic strain (kernels/materials/j2_return_mapping.hpp).
 
@@ -44,7 +44,10 @@ def run_case(n, model, threads, reuse):
          "final_shortening": 1 - length[-1] / L0, "final_expansion": radius[-1] / R0 - 1,
          "foot_plastic_strain_final": p["foot.plastic_strain"][-1],
          "plastic_work_final": e["plastic"][-1], "kinetic_final": e["kinetic"][-1]}
-    curve = ([1 - v / L0 for v in length], [v / R0 - 1 for v in radius])
+    # Relative to the measured start (the lattice does not fit L0 exactly at every R/dp).
+    curve = ([1 - v / length[0] for v in length], [v / radius[0] - 1 for v in radius])
+    r["initial_length_mm"], r["initial_foot_radius_mm"] = 1e3 * length[0], 1e3 * radius[0]
+    r["final_shortening"], r["final_expansion"] = curve[0][-1], curve[1][-1]
     return r, curve
 
 
