@@ -29,7 +29,8 @@ TEST(NeckingBar, NeckFormsAtTheCentreAndTheForcePeaks) {
     solver->step();
     f = solver->boundary_forces();
     peak = std::max(peak, f[1].force[0]);
-    if (solver->time() > 0.25 * T) worst_balance = std::max(worst_balance, std::abs(f[0].force[0] + f[1].force[0]) / peak);
+    if (solver->time() > 0.25 * T)
+      worst_balance = std::max(worst_balance, std::abs(f[0].force[0] + f[1].force[0]) / peak);
   }
   const auto p = solver->probes();
   const double neck = top0 - p[0].position[1];

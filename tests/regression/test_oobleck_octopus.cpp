@@ -12,8 +12,7 @@
 using namespace mfsd;
 
 TEST(OobleckOctopus, FloorCarriesTheWeightAndKeepsTheParticlesOut) {
-  const SceneDocument doc =
-      test::load_config("oobleck_octopus_2d.json", {"constants.dp=0.01", "solver.end_time=0.6"});
+  const SceneDocument doc = test::load_config("oobleck_octopus_2d.json", {"constants.dp=0.01", "solver.end_time=0.6"});
   const InitialParticles particles = generate_particles(doc.scene);
   auto solver = make_solver(doc.scene, particles, SolverOptions{});
   solver->initialize();
@@ -36,5 +35,5 @@ TEST(OobleckOctopus, FloorCarriesTheWeightAndKeepsTheParticlesOut) {
               punch_peak, floor_mean, weight, lowest / 0.01);
   EXPECT_GT(punch_peak, 100.0);
   EXPECT_NEAR(floor_mean, weight, 0.05 * weight);  // measured +1.7 %
-  EXPECT_GT(lowest, 0.0);                           // centres stay above the floor face
+  EXPECT_GT(lowest, 0.0);                          // centres stay above the floor face
 }

@@ -20,7 +20,8 @@ InitialParticles particles(const std::string& map) {
   "name": "mapped", "dimension": 2,
   "solver": {"end_time": 1},
   "bodies": [{"name": "bar", "spacing": 0.01, "geometry": {"box": {"min": [-0.5, -0.05], "max": [0.5, 0.05]}},
-              "reference_map": )" + map + R"(,
+              "reference_map": )" +
+                           map + R"(,
               "material": {"model": "neo_hookean", "density": 1000, "youngs_modulus": 1e6, "poisson_ratio": 0.3}}]
 })";
   return generate_particles(load_scene_text(text, "test", {}).scene);
