@@ -40,6 +40,13 @@ inline void sort_by_key(DeviceVector<B, K>& keys, DeviceVector<B, V>& values) {
   thrust::sort_by_key(BackendTraits<B>::policy(), keys.begin(), keys.end(), values.begin());
 }
 
+// Keeps the order of equal keys: the same order on every backend (contact
+// gathers sum in it, so the cpu and cuda results agree to round-off).
+template <class B, class K, class V>
+inline void stable_sort_by_key(DeviceVector<B, K>& keys, DeviceVector<B, V>& values) {
+  thrust::stable_sort_by_key(BackendTraits<B>::policy(), keys.begin(), keys.end(), values.begin());
+}
+
 template <class B, class T>
 inline void sequence(DeviceVector<B, T>& v) {
   thrust::sequence(BackendTraits<B>::policy(), v.begin(), v.end());

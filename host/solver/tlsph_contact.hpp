@@ -113,7 +113,7 @@ class TlsphContact {
     const ContactHashGrid<D> grid = make_grid();
     parallel_for<B>(count_, ContactKeyFunctor<D, Real>{grid, raw(x_), raw(keys_)});
     sequence<B, Index>(order_);
-    sort_by_key<B, std::int64_t, Index>(keys_, order_);
+    stable_sort_by_key<B, std::int64_t, Index>(keys_, order_);
     thrust::fill(BackendTraits<B>::policy(), start_.begin(), start_.begin() + cells_, Index(0));
     thrust::fill(BackendTraits<B>::policy(), end_.begin(), end_.begin() + cells_, Index(0));
     parallel_for<B>(count_, CellRangeFunctor{raw(keys_), count_, raw(start_), raw(end_)});

@@ -86,3 +86,13 @@ TEST(CrossBackend, TaylorBarsDouble) {
   compare("taylor_bar_2d.json", {"constants.H_over_dp=10"}, Precision::double_precision, 1e-7);
   compare("taylor_bar_3d_round.json", {"constants.R_over_dp=4"}, Precision::double_precision, 1e-7);
 }
+
+TEST(CrossBackend, ContactAndMandelReturnDouble) {
+  // Contact on the device (the hash search, pair forces, rigid-body markers
+  // placed by their motion, self-contact) and seed 001's return: the flyer
+  // plates, the octopus (floor, punch, self-contact) and seed 001's bar, coarse.
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("flyer_plate_2d.json", {"constants.L_over_dp=20"}, Precision::double_precision, 1e-7);
+  compare("oobleck_octopus_2d.json", {"constants.dp=0.01"}, Precision::double_precision, 1e-7);
+  compare("taylor_bar_seed001_3d.json", {"constants.R_over_dp=4"}, Precision::double_precision, 1e-7);
+}
