@@ -1,4 +1,4 @@
-"""Suite `scenes`: the seed 001 scenes of configs/ at the seeds' resolutions,
+"""Suite `scenes`: the seed scenes of configs/ at the seeds' resolutions,
 written with velocity conditions and loads as the seed writes them (so the
 expressions' cost is included): particle-steps/s, time per step, the share of
 the loads and boundary stages, set-up time and peak memory per particle, for
@@ -13,6 +13,11 @@ CASES = [  # (label, scene, overrides, simulated time of the seed's run [s])
     ("cantilever plate 3D, dx = 0.5 mm", "configs/cantilever_plate_3d.json", {}, 0.6),
     ("large-deformation cantilever 3D, dx = 1 mm", "configs/cantilever_large_deformation_3d.json", {}, 1.2),
     ("twisting column 3D (Fig. 21), dx = 1/30 m", "configs/twisting_column_seed001_3d.json", {}, 0.2),
+    ("flyer plates 2D (seed 001 4.3.1), dx = 0.01 m", "configs/flyer_plate_2d.json", {}, 1.0e-3),
+    ("copper Taylor bar 3D (seed 001 4.3.2), dx = 0.2 mm", "configs/taylor_bar_seed001_3d.json",
+     {"constants.R_over_dp": 16}, 1.0e-4),
+    ("round Taylor bar 3D (seed 000 Table 6), R/dp = 16", "configs/taylor_bar_3d_round.json",
+     {"constants.R_over_dp": 16}, 8.0e-5),
 ]
 QUICK = [CASES[2], CASES[3]]
 
