@@ -31,9 +31,12 @@ class TlsphContact {
  public:
   bool enabled() const { return enabled_; }
 
-  // `volume`: the particles' volumes in the solver's (reordered) order.
+  // `volume`: the particles' volumes in the solver's (reordered) order;
+  // `near_surface`: which particles can touch (the surface layer, one kernel
+  // support deep: interior particles never meet another body).
   void setup(const Scene& scene, const InitialParticles& init, const std::vector<BodyRange>& ranges,
-             const std::vector<BodyProperties>& props, const std::vector<Real>& volume) {
+             const std::vector<BodyProperties>& props, const std::vector<Real>& volume,
+             const std::vector<unsigned char>& near_surface) {
     const ContactSpec& spec = scene.contact;
     enabled_ = spec.enabled;
     work_.assign(scene.bodies.size(), 0.0);
@@ -57,6 +60,7 @@ class TlsphContact {
                                           Real(support * support), self ? 1 : 0, 0});
       Span s{b, Index(particle.size()), 0};
       for (Index p = ranges[b].begin; p < ranges[b].end; ++p) {
+        if (!near_surface[size_t(p)]) continue;
         particle.push_back(p);
         mass.push_back(Real(rho * double(volume[size_t(p)])));
         group.push_back(int(groups.size() - 1));

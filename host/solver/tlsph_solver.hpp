@@ -201,7 +201,18 @@ class TlsphSolver final : public Solver {
     if (scene_.contact.enabled) {
       std::vector<BodyProperties> body_props;
       for (size_t b = 0; b < scene_.bodies.size(); ++b) body_props.push_back(props(b));
-      contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)));
+      // Contact candidates: the surface particles and their reference
+      // neighbours (a layer one kernel support deep), in the solver's order.
+      std::vector<unsigned char> near_surface(size_t(n), 0);
+      const auto offsets = to_host<B>(pairs_.offsets);
+      const auto neighbor = to_host<B>(pairs_.neighbor);
+      for (Index i = 0; i < n; ++i) {
+        if (!init_.surface[size_t(ids[size_t(i)])]) continue;
+        near_surface[size_t(i)] = 1;
+        for (PairIndex k = offsets[size_t(i)]; k < offsets[size_t(i) + 1]; ++k) near_surface[size_t(neighbor[k])] = 1;
+      }
+      contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)),
+                     near_surface);
     }
     std::vector<Index> probe_index;
     probe_offsets_.assign(1, 0);

@@ -41,8 +41,6 @@ TEST(ContactRigid, PunchForceBalancesTheBaseAndKeepsTheFace) {
     for (size_t i = 0; i < s.n; ++i)
       if (std::abs(s.position[3 * i] - 0.01) < 0.0025 - dp / 2)  // under the punch
         min_gap = std::min(min_gap, face - s.position[3 * i + 1]);
-    if (steps % 20 == 0 || solver->time() > 0.0399)
-      std::printf("t %.6g base %.6g punch %.6g\n", solver->time(), f[0].force[1], f[1].force[1]);
   }
   std::printf("min gap %.4g dp, momentum vs impulse %.3g, punch %.5g N/m, base %.5g N/m\n", min_gap / dp, worst_impulse,
               f[1].force[1], f[0].force[1]);
