@@ -7,6 +7,7 @@
 // (boundary_forces.csv). Include after the backend header.
 #pragma once
 #include <thrust/fill.h>
+#include <thrust/functional.h>
 
 #include <algorithm>
 #include <array>
@@ -135,7 +136,7 @@ class TlsphContact {
                                          law_,
                                          Real(stiffness_factor_),
                                          raw(force_)};
-    inverse_step_ = double(transform_reduce<B>(0, count_, f, Real(0), ContactMax<Real>{}));
+    inverse_step_ = double(transform_reduce<B>(0, count_, f, Real(0), thrust::maximum<Real>{}));
     for (const Span& s : body_spans_) {
       const ContactSums sum =
           transform_reduce<B>(s.begin, s.end,

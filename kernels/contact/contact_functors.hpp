@@ -195,11 +195,6 @@ struct ContactForceFunctor {
   }
 };
 
-template <class Real>
-struct ContactMax {
-  MFSD_HD Real operator()(Real a, Real b) const { return math::max(a, b); }
-};
-
 // Power and force sum of the contact on one body (or a rigid body's markers).
 struct ContactSums {
   double power;

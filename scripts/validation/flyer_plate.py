@@ -21,7 +21,6 @@ plane strain; deformable-deformable contact with contcoeff (contact.stiffness)
 Writes docs/validation/flyer_plate.json and .png.
 Usage: scripts/validation/flyer_plate.py [--res 50 100] [--threads N] [--reuse]
 """
-import argparse
 import glob
 import os
 import sys
@@ -88,11 +87,7 @@ def plt():
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--res", type=int, nargs="*", help="resolutions L/dp (default 50 100; seed 001: 100)")
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
-    args = ap.parse_args()
+    args = m.study_arguments(__doc__, "resolutions L/dp (default 50 100; seed 001: 100)")
     import numpy as np
     res_list = args.res or [50, 100]
     result = {"study": "flyer_plate", "command": "scripts/validation/flyer_plate.py", "machine": m.machine(),

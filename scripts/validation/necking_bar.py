@@ -19,7 +19,6 @@ bar), with the scene's Kelvin-Voigt damping (factor 0.125, as the Taylor bars).
 Writes docs/validation/necking_bar.json and .png.
 Usage: scripts/validation/necking_bar.py [--res 20 40] [--threads N] [--reuse]
 """
-import argparse
 import math
 import os
 import sys
@@ -64,11 +63,7 @@ def run_case(n, hourglass, T, damping, threads, reuse):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--res", type=int, nargs="*", help="resolutions H/dp (default 20 40)")
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
-    args = ap.parse_args()
+    args = m.study_arguments(__doc__, "resolutions H/dp (default 20 40)")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

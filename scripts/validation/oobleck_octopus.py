@@ -11,7 +11,6 @@ punch and the floor markers.
 Writes docs/validation/oobleck_octopus.json and .png.
 Usage: scripts/validation/oobleck_octopus.py [--threads N] [--reuse]
 """
-import argparse
 import glob
 import os
 import sys
@@ -25,10 +24,7 @@ OUT = os.path.join(m.ROOT, "out", "validation")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--reuse", action="store_true", help="analyse a finished run again")
-    args = ap.parse_args()
+    args = m.study_arguments(__doc__)
     import numpy as np
     import matplotlib
     matplotlib.use("Agg")

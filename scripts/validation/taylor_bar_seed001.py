@@ -16,7 +16,6 @@ equivalent plastic strain (kernels/materials/j2_return_mapping.hpp).
 Writes docs/validation/taylor_bar_seed001.json and .png.
 Usage: scripts/validation/taylor_bar_seed001.py [--res 4 8] [--threads N] [--reuse]
 """
-import argparse
 import os
 import sys
 
@@ -52,11 +51,7 @@ def run_case(n, model, threads, reuse):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--res", type=int, nargs="*", help="resolutions R/dp (default 4 8; seed 001: 16)")
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
-    args = ap.parse_args()
+    args = m.study_arguments(__doc__, "resolutions R/dp (default 4 8; seed 001: 16)")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
