@@ -57,6 +57,17 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
     << (s.solver.damping_form == DampingForm::split ? "split" : "isotropic") << "), sound speed "
     << (s.solver.sound_speed == SoundSpeed::bulk ? "bulk sqrt(K/rho0)" : "p-wave sqrt((K+4G/3)/rho0)")
     << ", kernel correction in force sums: " << (s.solver.correction_in_force ? "yes" : "no") << "\n";
+  if (s.solver.relaxation.enabled) {
+    const RelaxationSpec& r = s.solver.relaxation;
+    o << "  dynamic relaxation: ";
+    if (r.factor > 0)
+      o << "factor " << r.factor << " (eta = factor p rho0 c0 h / CFL)";
+    else
+      o << "viscosity " << r.viscosity << " Pa s";
+    o << ", random ratio " << r.random_ratio << ", seed " << r.seed << ", from t = " << r.t_start << " s";
+    if (r.t_end < 1e299) o << " to " << r.t_end << " s";
+    o << "; clamped and velocity-condition particles held\n";
+  }
   double dt = 1e300;
   for (size_t b = 0; b < s.bodies.size(); ++b) {
     const BodySpec& body = s.bodies[b];

@@ -136,6 +136,18 @@ struct MeasurePlaneSpec {
   double thickness = 0;
 };
 
+// Dynamic relaxation (seed 003 ref. [68]; kernels/tlsph/relaxation.hpp): a
+// viscous damping of the velocity differences of neighbours, integrated
+// implicitly pair by pair, in a step with probability random_ratio.
+struct RelaxationSpec {
+  bool enabled = false;
+  double viscosity = 0;        // eta, Pa s (one of viscosity and factor)
+  double factor = 0;           // eta = factor p rho0 c0 h / CFL per body (docs/theory.md)
+  double random_ratio = 0.2;   // p: a step relaxes with probability p, with eta / p
+  unsigned long long seed = 1;  // of the random choice (runs repeat exactly)
+  double t_start = 0, t_end = 1e300;  // relaxes the steps that start in [t_start, t_end)
+};
+
 struct SolverSpec {
   HourglassControl hourglass = HourglassControl::genog;
   double h_over_dp = 1.15;
@@ -147,6 +159,7 @@ struct SolverSpec {
   bool correction_in_force = true;
   double damping_factor = 1.0;
   DampingForm damping_form = DampingForm::isotropic;
+  RelaxationSpec relaxation;
   SoundSpeed sound_speed = SoundSpeed::bulk;
   Point3 gravity{0, 0, 0};
   double correction_floor = 0.1;

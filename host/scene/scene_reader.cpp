@@ -113,6 +113,27 @@ SolverSpec read_solver(JsonNode s, int dim) {
                                                                                              : DampingForm::split;
     d.finish();
   }
+  if (s.has("relaxation")) {
+    JsonNode r = s.object_or_empty("relaxation");
+    spec.relaxation.enabled = r.boolean("enabled", true);
+    if (r.has("viscosity") == r.has("factor"))
+      throw SceneError(r.key_path("viscosity"), r.has("factor") ? "both viscosity and factor" : "neither",
+                       "one of viscosity (eta, Pa s) and factor (eta = factor p rho0 c0 h / CFL)");
+    if (r.has("viscosity")) spec.relaxation.viscosity = r.number("viscosity", Range::positive());
+    if (r.has("factor")) spec.relaxation.factor = r.number("factor", Range::positive());
+    spec.relaxation.random_ratio =
+        r.number("random_ratio", 0.2, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+    const double seed = r.number("seed", 1.0, Range::non_negative());
+    if (seed != std::floor(seed) || seed > 9.0e15)
+      throw SceneError(r.key_path("seed"), std::to_string(seed), "a whole number >= 0");
+    spec.relaxation.seed = (unsigned long long)seed;
+    spec.relaxation.t_start = r.number("start", 0.0, Range::non_negative());
+    spec.relaxation.t_end = r.number("end", 1e300, Range::positive());
+    if (spec.relaxation.t_end <= spec.relaxation.t_start)
+      throw SceneError(r.key_path("end"), std::to_string(spec.relaxation.t_end),
+                       "a time after start (" + std::to_string(spec.relaxation.t_start) + ")");
+    r.finish();
+  }
   const auto g = s.vector("gravity", size_t(dim), std::vector<double>(size_t(dim), 0.0), Range::any());
   for (int k = 0; k < dim; ++k) spec.gravity[k] = g[k];
   s.finish();

@@ -96,10 +96,13 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
+    Vec<D, Real> g;
+    for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
     return transform_reduce<B>(s_.range.begin, s_.range.end,
                                EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state,
-                                                                v.velocity, v.volume, Real(s_.density)},
-                               EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}}, EnergySumsPlus{});
+                                                                v.velocity, v.displacement, v.volume,
+                                                                Real(s_.density), g},
+                               EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0}, EnergySumsPlus{});
   }
 
  private:

@@ -10,11 +10,11 @@
 //                    v += dt f/m like a load
 //   loads            per load: v += dt f/m at t + dt/2 (conditions.hpp)
 //   boundary         velocity conditions at t + dt, then clamps, with reactions
+//   relaxation       dynamic relaxation of v (tlsph_relaxation.hpp), when
+//                    the scene asks for it; holds the boundary's particles
 //   deformation_rate dF/dt at the new velocity (eq. 22), F, u to t + dt
 //                    (eq. 37), reduced to max |v|, max |a| and health
 //   time_step        next dt on the host                   (eq. 38)
-// Positions are stored as displacements u = x - X, so that in single precision
-// the small increments dt v keep their full relative accuracy.
 // Positions are stored as displacements u = x - X, so that in single precision
 // the small increments dt v keep their full relative accuracy.
 // Each stage is timed on its own. Include after the backend header.
@@ -36,6 +36,7 @@
 #include "host/solver/tlsph_body_kernels.hpp"
 #include "host/solver/tlsph_conditions.hpp"
 #include "host/solver/tlsph_contact.hpp"
+#include "host/solver/tlsph_relaxation.hpp"
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
 #include "kernels/tlsph/hourglass_indicator.hpp"
@@ -138,8 +139,10 @@ class TlsphSolver final : public Solver {
             probes_need_stress_ || f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain";
     bool loads = false;
     for (const auto& c : scene.conditions) loads = loads || c.type != ConditionSpec::Type::velocity;
-    for (const char* name : {"stress", "force", "contact", "loads", "boundary", "deformation_rate", "time_step"})
-      if ((loads || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact"))
+    for (const char* name :
+         {"stress", "force", "contact", "loads", "boundary", "relaxation", "deformation_rate", "time_step"})
+      if ((loads || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact") &&
+          (scene.solver.relaxation.enabled || std::string(name) != "relaxation"))
         timers_.id(name);
     has_loads_ = loads;
     conditions_.compile(scene_);
@@ -214,6 +217,29 @@ class TlsphSolver final : public Solver {
       contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)),
                      near_surface);
     }
+    {
+      std::vector<double> density, viscosity;
+      double support = 0;
+      const RelaxationSpec& r = scene_.solver.relaxation;
+      for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+        const double rho = scene_.bodies[b].material.density;
+        density.push_back(rho);
+        // eta = factor p rho0 c0 h / CFL: factor 1 makes (eta/p) dt / (rho0 h^2) = 1 (docs/theory.md).
+        viscosity.push_back(r.factor > 0 ? r.factor * r.random_ratio * rho * props(b).c0 * props(b).h / scene_.solver.cfl
+                                         : r.viscosity);
+        support = std::max(support, 2.0 * props(b).h);
+      }
+      // Held by the relaxation: the particles of clamps and velocity conditions.
+      std::vector<unsigned char> held(size_t(n), 0);
+      for (size_t i = 0; i < init_.constrained.size(); ++i)
+        if (init_.constrained[i]) held[size_t(where[i])] = 1;
+      for (size_t c = 0; c < scene_.conditions.size(); ++c)
+        if (scene_.conditions[c].type == ConditionSpec::Type::velocity)
+          for (long id : init_.condition_particles[c].ids) held[size_t(where[size_t(id)])] = 1;
+      relaxation_.setup(scene_.solver.relaxation, ranges_, density, viscosity,
+                        to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position)), support,
+                        held);
+    }
     std::vector<Index> probe_index;
     probe_offsets_.assign(1, 0);
     for (const auto& members : init_.probe_particles) {
@@ -250,6 +276,7 @@ class TlsphSolver final : public Solver {
     for (auto& k : bodies_) k->stress(v_, Real(0));
     for (auto& k : bodies_) k->acceleration(v_, Real(0));
     update_time_step(statistics());
+    for (auto& k : bodies_) gravity_at_start_.push_back(k->energy(v_).gravity);  // with an initial displacement
 
     // Set-up report.
     report_.particles = n;
@@ -284,6 +311,7 @@ class TlsphSolver final : public Solver {
     if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt); });
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1); });
     run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1); });
+    if (relaxation_.enabled()) run("relaxation", [&] { relaxation_.apply(v_, time_, dt); });
     StepStatistics<Real> stats;
     run("deformation_rate", [&] {
       RateHalfStepFunctor<D, Real> f{
@@ -354,6 +382,8 @@ class TlsphSolver final : public Solver {
       be.external_work = conditions_.external_work(b);
       be.boundary_work = conditions_.boundary_work(b);
       be.contact_work = contact_.work(b);
+      be.relaxation = relaxation_.dissipation(b);
+      be.gravity_work = s.gravity - gravity_at_start_[b];
       for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
     }
@@ -663,6 +693,8 @@ class TlsphSolver final : public Solver {
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
   TlsphConditions<B, D, Real> conditions_;
   TlsphContact<B, D, Real> contact_;
+  TlsphRelaxation<B, D, Real> relaxation_;
+  std::vector<double> gravity_at_start_;  // per body: sum m g . u0
   bool has_loads_ = false;
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};

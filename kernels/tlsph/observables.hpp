@@ -80,6 +80,7 @@ struct EnergySums {
   double strain;
   double plastic;  // plastic work
   double momentum[3];
+  double gravity;  // sum m g . u: the work of a uniform gravity since u = 0 (a state function)
 };
 
 struct EnergySumsPlus {
@@ -87,19 +88,23 @@ struct EnergySumsPlus {
     return EnergySums{a.kinetic + b.kinetic,
                       a.strain + b.strain,
                       a.plastic + b.plastic,
-                      {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]}};
+                      {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]},
+                      a.gravity + b.gravity};
   }
 };
 
-// Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work and momentum m v of particle i (accumulated in double).
+// Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work, momentum m v and
+// gravity's work m g . u of particle i (accumulated in double).
 template <int D, class Real, class Material>
 struct EnergyFunctor {
   Material material;
   const Mat<D, Real>* deformation_gradient;
   const J2State<Real>* plastic_state;  // plastic materials, else null
   const Vec<D, Real>* velocity;
+  const Vec<D, Real>* displacement;
   const Real* volume;
   Real density;
+  Vec<D, Real> gravity;
 
   MFSD_HD EnergySums operator()(Index i) const {
     const double V0 = double(volume[i]);
@@ -110,8 +115,12 @@ struct EnergyFunctor {
     EnergySums s{0.5 * m * double(squared_norm(v)),
                  V0 * double(strain_energy_of(material, deformation_gradient[i], plastic_state, i)),
                  plastic,
-                 {0.0, 0.0, 0.0}};
-    for (int a = 0; a < D; ++a) s.momentum[a] = m * double(v.v[a]);
+                 {0.0, 0.0, 0.0},
+                 0.0};
+    for (int a = 0; a < D; ++a) {
+      s.momentum[a] = m * double(v.v[a]);
+      s.gravity += m * double(gravity.v[a]) * double(displacement[i].v[a]);
+    }
     return s;
   }
 };

@@ -32,7 +32,7 @@ def run(config, sets, outdir, extra=(), quiet=True):
     """Runs `mfsd run config --set k=v ... -o outdir`; returns the exit code."""
     cmd = [BINARY, "run", os.path.join(ROOT, config), "-o", outdir]
     for k, v in sets.items():
-        cmd += ["--set", f"{k}={v}"]
+        cmd += ["--set", f"{k}={json.dumps(v) if isinstance(v, (dict, list)) else v}"]
     cmd += list(extra)
     if quiet:
         cmd.append("-q")

@@ -110,8 +110,8 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   std::getline(energies, header);
   EXPECT_EQ(header,
             "time,kinetic,strain,total,hourglass_max,hourglass_mean,external_work,boundary_work,plastic,fracture,"
-            "contact_work,balance,momentum.x,momentum.y,block.kinetic,block.strain,block.plastic,block.fracture,"
-            "block.external_work,block.boundary_work,block.contact_work,block.balance,block.momentum.x,"
+            "contact_work,gravity_work,relaxation,balance,momentum.x,momentum.y,block.kinetic,block.strain,block.plastic,block.fracture,"
+            "block.external_work,block.boundary_work,block.contact_work,block.gravity_work,block.relaxation,block.balance,block.momentum.x,"
             "block.momentum.y");
   std::ifstream forces(fs::path(out()) / "boundary_forces.csv");
   std::getline(forces, header);
@@ -233,6 +233,22 @@ TEST_F(Cli, BadContact) {
                      "/contact/friction: got -0.1; expected a number >= 0");
   expect_input_error("run " + with(R"({"self_contact": ["block"], "stiffnes": 2})") + " -o " + out(),
                      "/contact/stiffnes: got an unknown key");
+}
+
+TEST_F(Cli, BadRelaxation) {
+  auto with = [&](const std::string& relaxation) {
+    return scene("\"end_time\": 0.002", "\"end_time\": 0.002, \"relaxation\": " + relaxation);
+  };
+  expect_input_error("run " + with("{}") + " -o " + out(),
+                     "/solver/relaxation/viscosity: got neither; expected one of viscosity (eta, Pa s) and factor");
+  expect_input_error("run " + with(R"({"viscosity": 10, "factor": 1})") + " -o " + out(),
+                     "/solver/relaxation/viscosity: got both viscosity and factor; expected one of viscosity");
+  expect_input_error("run " + with(R"({"factor": 1, "random_ratio": 0})") + " -o " + out(),
+                     "/solver/relaxation/random_ratio: got 0; expected a number in (0, 1]");
+  expect_input_error("run " + with(R"({"factor": 1, "start": 0.001, "end": 0.001})") + " -o " + out(),
+                     "/solver/relaxation/end: got 0.001000; expected a time after start (0.001000)");
+  expect_input_error("run " + with(R"({"factor": 1, "seed": 1.5})") + " -o " + out(),
+                     "/solver/relaxation/seed: got 1.500000; expected a whole number >= 0");
 }
 
 TEST_F(Cli, NonPositiveDensityAndSpacing) {

@@ -96,3 +96,14 @@ TEST(CrossBackend, ContactAndMandelReturnDouble) {
   compare("oobleck_octopus_2d.json", {"constants.dp=0.01"}, Precision::double_precision, 1e-7);
   compare("taylor_bar_seed001_3d.json", {"constants.R_over_dp=4"}, Precision::double_precision, 1e-7);
 }
+
+TEST(CrossBackend, RelaxationDouble) {
+  // The coloured Gauss-Seidel sweeps of the dynamic relaxation (one thread
+  // per cell, the same random choice of steps), with held particles (the
+  // necking bar's pulled ends) in 2-D and a clamp in 3-D.
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("necking_bar_2d.json", {"constants.H_over_dp=10", "solver.relaxation={\"viscosity\": 1e4}"},
+          Precision::double_precision, 1e-7);
+  compare("twisting_column_3d.json", {"constants.H_over_dp=4", "solver.relaxation={\"viscosity\": 100}"},
+          Precision::double_precision, 1e-9);
+}
