@@ -37,8 +37,9 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
 }
 
 namespace {
-const char* kBodyEnergyColumns[] = {"kinetic",      "strain",       "plastic",    "fracture", "external_work", "boundary_work",
-                                    "contact_work", "gravity_work", "relaxation", "balance"};
+const char* kBodyEnergyColumns[] = {"kinetic",       "strain",       "plastic",      "fracture", "external_work",
+                                    "boundary_work", "contact_work", "gravity_work", "damping",  "relaxation",
+                                    "balance"};
 }
 
 // Totals first (the columns earlier versions wrote keep their places), then
@@ -47,7 +48,7 @@ std::vector<std::string> energy_columns(const Scene& scene) {
   std::vector<std::string> cols{"time",          "kinetic",        "strain",        "total",
                                 "hourglass_max", "hourglass_mean", "external_work", "boundary_work",
                                 "plastic",       "fracture",       "contact_work",  "gravity_work",
-                                "relaxation",    "balance"};
+                                "damping",       "relaxation",     "balance"};
   const char* axes[3] = {"x", "y", "z"};
   for (int a = 0; a < scene.dimension; ++a) cols.push_back(std::string("momentum.") + axes[a]);
   for (auto& b : scene.bodies) {
@@ -67,6 +68,7 @@ std::vector<double> energy_row(double time, const EnergySample& e, int dimension
     sum.contact_work += b.contact_work;
     sum.relaxation += b.relaxation;
     sum.gravity_work += b.gravity_work;
+    sum.damping += b.damping;
   }
   sum.kinetic = e.kinetic;
   sum.strain = e.strain;
@@ -82,12 +84,13 @@ std::vector<double> energy_row(double time, const EnergySample& e, int dimension
                           sum.fracture,
                           sum.contact_work,
                           sum.gravity_work,
+                          sum.damping,
                           sum.relaxation,
                           sum.balance()};
   for (int a = 0; a < dimension; ++a) row.push_back(e.momentum[a]);
   for (auto& b : e.bodies) {
     row.insert(row.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.contact_work,
-                           b.gravity_work, b.relaxation, b.balance()});
+                           b.gravity_work, b.damping, b.relaxation, b.balance()});
     for (int a = 0; a < dimension; ++a) row.push_back(b.momentum[a]);
   }
   return row;

@@ -25,4 +25,5 @@ inline constexpr const char* jacobian = "jacobian";
 inline constexpr const char* von_mises_strain = "von_mises_strain";
 inline constexpr const char* plastic_state = "plastic_state";    // plastic bodies: C_p^{-1}, alpha, work
 inline constexpr const char* plastic_strain = "plastic_strain";  // output copy of alpha
+inline constexpr const char* damping_work = "damping_work";      // Kelvin-Voigt work per reference volume
 }  // namespace mfsd::field

@@ -34,12 +34,13 @@ struct Snapshot {
 struct BodyEnergy {
   double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0, contact_work = 0;
   double gravity_work = 0;   // work of solver.gravity since the start (sum m g . (u - u0))
+  double damping = 0;        // work taken by the Kelvin-Voigt damping (solver.damping)
   double relaxation = 0;     // kinetic energy removed by solver.relaxation
   Point3 momentum{0, 0, 0};  // kg m/s (2-D: per metre of depth)
   // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc - W_contact - W_gravity.
   double balance() const {
-    return kinetic + strain + plastic + fracture + relaxation - external_work - boundary_work - contact_work -
-           gravity_work;
+    return kinetic + strain + plastic + fracture + damping + relaxation - external_work - boundary_work -
+           contact_work - gravity_work;
   }
 };
 

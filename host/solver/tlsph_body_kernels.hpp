@@ -65,7 +65,8 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
                                                   v.shear_stress,
                                                   v.inverse_F,
                                                   v.neighbor_record,
-                                                  v.plastic_state};
+                                                  v.plastic_state,
+                                                  v.damping_work};
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
@@ -101,8 +102,8 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
     return transform_reduce<B>(s_.range.begin, s_.range.end,
                                EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state,
                                                                 v.velocity, v.displacement, v.volume,
-                                                                Real(s_.density), g},
-                               EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0}, EnergySumsPlus{});
+                                                                v.damping_work, Real(s_.density), g},
+                               EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0}, EnergySumsPlus{});
   }
 
  private:

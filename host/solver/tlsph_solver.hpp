@@ -190,6 +190,7 @@ class TlsphSolver final : public Solver {
       particles_.template add<J2State<Real>>(field::plastic_state);
       particles_.template add<Real>(field::plastic_strain);
     }
+    if (scene_.solver.damping_factor > 0) particles_.template add<Real>(field::damping_work);  // zero
     bind_views();
     parallel_for<B>(n, IdentityFunctor<D, Real>{v_.deformation_gradient});
     if (v_.plastic_state) parallel_for<B>(n, InitialPlasticStateFunctor<Real>{v_.plastic_state});
@@ -384,6 +385,7 @@ class TlsphSolver final : public Solver {
       be.contact_work = contact_.work(b);
       be.relaxation = relaxation_.dissipation(b);
       be.gravity_work = s.gravity - gravity_at_start_[b];
+      be.damping = s.damping;
       for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
     }
@@ -532,6 +534,7 @@ class TlsphSolver final : public Solver {
     v_.plastic_state =
         particles_.has(field::plastic_state) ? particles_.template get<J2State<Real>>(field::plastic_state) : nullptr;
     v_.plastic_strain = opt_real(field::plastic_strain);
+    v_.damping_work = opt_real(field::damping_work);
   }
 
   std::unique_ptr<BodyKernels<B, D, Real>> make_body_kernels(size_t b) {

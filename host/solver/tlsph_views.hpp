@@ -30,6 +30,7 @@ struct TlsphViews {
   Real* jacobian;
   Real* von_mises_strain;
   Real* plastic_strain;  // when some body is plastic, else null
+  Real* damping_work;    // with Kelvin-Voigt damping (factor > 0), else null
 };
 
 }  // namespace mfsd

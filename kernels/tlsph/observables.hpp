@@ -81,6 +81,7 @@ struct EnergySums {
   double plastic;  // plastic work
   double momentum[3];
   double gravity;  // sum m g . u: the work of a uniform gravity since u = 0 (a state function)
+  double damping;  // work taken by the Kelvin-Voigt damping
 };
 
 struct EnergySumsPlus {
@@ -89,12 +90,14 @@ struct EnergySumsPlus {
                       a.strain + b.strain,
                       a.plastic + b.plastic,
                       {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]},
-                      a.gravity + b.gravity};
+                      a.gravity + b.gravity,
+                      a.damping + b.damping};
   }
 };
 
-// Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work, momentum m v and
-// gravity's work m g . u of particle i (accumulated in double).
+// Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work, momentum m v,
+// gravity's work m g . u and the damping's work of particle i (accumulated in
+// double).
 template <int D, class Real, class Material>
 struct EnergyFunctor {
   Material material;
@@ -103,6 +106,7 @@ struct EnergyFunctor {
   const Vec<D, Real>* velocity;
   const Vec<D, Real>* displacement;
   const Real* volume;
+  const Real* damping_work;  // null without damping
   Real density;
   Vec<D, Real> gravity;
 
@@ -116,7 +120,8 @@ struct EnergyFunctor {
                  V0 * double(strain_energy_of(material, deformation_gradient[i], plastic_state, i)),
                  plastic,
                  {0.0, 0.0, 0.0},
-                 0.0};
+                 0.0,
+                 damping_work ? V0 * double(damping_work[i]) : 0.0};
     for (int a = 0; a < D; ++a) {
       s.momentum[a] = m * double(v.v[a]);
       s.gravity += m * double(gravity.v[a]) * double(displacement[i].v[a]);

@@ -50,6 +50,7 @@ struct StressFunctor {
   Mat<D, Real>* inverse_F;                     // F^{-1} (genog)
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU, else null
   J2State<Real>* plastic_state;                // plastic materials, else null
+  Real* damping_work;                          // with Kelvin-Voigt damping: its work per V0, else null
 
   static constexpr bool plastic = IsPlastic<Material>::value;
   static_assert(!(plastic && std::is_same<Hourglass, HourglassLaplacian>::value),
@@ -62,6 +63,8 @@ struct StressFunctor {
     displacement[i] += velocity[i] * half_dt;
     const Mat<D, Real> F_inv = inverse(F);
     const Mat<D, Real> tau_d = damping.stress(F, dF);
+    // The damping stress's work over the step, V0 P_d : dF/dt dt = V0 tau_d : (dF/dt F^{-1}) dt.
+    if (damping_work) damping_work[i] += Real(2) * half_dt * ddot(tau_d, dF * F_inv);
     Mat<D, Real> tau;
     [[maybe_unused]] Mat<D, Real> S;
     if constexpr (plastic) {

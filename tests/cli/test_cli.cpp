@@ -110,8 +110,8 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   std::getline(energies, header);
   EXPECT_EQ(header,
             "time,kinetic,strain,total,hourglass_max,hourglass_mean,external_work,boundary_work,plastic,fracture,"
-            "contact_work,gravity_work,relaxation,balance,momentum.x,momentum.y,block.kinetic,block.strain,block.plastic,block.fracture,"
-            "block.external_work,block.boundary_work,block.contact_work,block.gravity_work,block.relaxation,block.balance,block.momentum.x,"
+            "contact_work,gravity_work,damping,relaxation,balance,momentum.x,momentum.y,block.kinetic,block.strain,block.plastic,block.fracture,"
+            "block.external_work,block.boundary_work,block.contact_work,block.gravity_work,block.damping,block.relaxation,block.balance,block.momentum.x,"
             "block.momentum.y");
   std::ifstream forces(fs::path(out()) / "boundary_forces.csv");
   std::getline(forces, header);
