@@ -44,6 +44,7 @@ def main():
            "largest_punch_force": max(abs(v) for v in forces["punch.y"]),
            "floor_force_final": forces["floor.y"][-1], "weight": None,
            "plastic_work_final": e["plastic"][-1], "contact_work_final": e["contact_work"][-1],
+           "gravity_work_final": e["gravity_work"][-1], "balance_final": e["balance"][-1],
            "lowest_particle_over_dp": min(float(np.min(np.asarray(d["points"])[:, 1])) for d in fields) / 0.005}
     res["weight"] = 1000 * 9.81 * timing["particles"] * 0.005 ** 2
     print(f"{res['particles']} particles, {res['steps']} steps, {res['wall_seconds']:.0f} s; largest von Mises "
@@ -79,6 +80,8 @@ def main():
     ax.plot(e["time"], e["strain"], label="stored elastic")
     ax.plot(e["time"], e["plastic"], label="viscoplastic work")
     ax.plot(e["time"], [-v for v in e["contact_work"]], label="- contact work")
+    ax.plot(e["time"], e["gravity_work"], label="gravity's work")
+    ax.plot(e["time"], e["balance"], "k", label="balance")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("J per m of depth")
     ax.legend(fontsize=7)
