@@ -16,7 +16,7 @@ for a cube of side dp; the initial value is L) and the radius r_max + dp/2;
 the centre-to-centre values are recorded as well.
 
 Writes docs/validation/taylor_bars_<case>.json and .png.
-Usage: scripts/validation/taylor_bars.py round|square|2d [--res 8 12] [--threads N] [--reuse]
+Usage: scripts/validation/taylor_bars.py round|square|2d [--res 8 12] [--threads N] [--reuse] [--out STEM]
 """
 import argparse
 import glob
@@ -182,9 +182,11 @@ def main():
     ap.add_argument("--res", type=int, nargs="*", help="resolutions (R/dp, H/dp)")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
+    ap.add_argument("--out", help="stem of the result files in docs/validation (default taylor_bars_<case>; "
+                                  "e.g. a bench resolution on its own: --res 16 --out taylor_bars_round_R16)")
     args = ap.parse_args()
     res, fig = {"round": round_bar, "square": square_bar, "2d": bar_2d}[args.case](args)
-    m.write_study(os.path.join(DOCS, f"taylor_bars_{args.case}"), res, fig)
+    m.write_study(os.path.join(DOCS, args.out or f"taylor_bars_{args.case}"), res, fig)
 
 
 if __name__ == "__main__":
