@@ -8,17 +8,15 @@
 // Include after the backend header.
 #pragma once
 #include <thrust/copy.h>
-#include <thrust/fill.h>
 #include <thrust/functional.h>
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/neighbors/reference_neighbor_list.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/scene.hpp"
 #include "host/solver/solver.hpp"
@@ -46,13 +44,13 @@ class TlsphRelaxation {
     if (!spec_.enabled) return;
     before_.resize(position.size());
     random_.seed(spec_.seed);
-    // Cells of edge `support` over the reference bounding box.
+    // Cells of edge `support` over the reference bounding box (the grid of the neighbour search).
     double lo[D], hi[D];
     for (int a = 0; a < D; ++a) {
       lo[a] = hi[a] = position.empty() ? 0.0 : double(position[0].v[a]);
       for (const auto& x : position) lo[a] = std::min(lo[a], double(x.v[a])), hi[a] = std::max(hi[a], double(x.v[a]));
     }
-    const double edge = support * (1 + 1e-9);
+    const CellGrid<D> grid = make_cell_grid<D>(lo, hi, support, int(ranges.size()));
     struct Entry {
       int colour;
       int body;
@@ -62,15 +60,13 @@ class TlsphRelaxation {
     std::vector<Entry> entries;
     for (size_t b = 0; b < ranges.size(); ++b)
       for (Index p = ranges[b].begin; p < ranges[b].end; ++p) {
-        std::int64_t cell = 0;
+        int c[D];
         int colour = 0;
         for (int a = D - 1; a >= 0; --a) {
-          const std::int64_t c = std::int64_t(std::floor((double(position[size_t(p)].v[a]) - lo[a]) / edge));
-          const std::int64_t dims = std::int64_t(std::floor((hi[a] - lo[a]) / edge)) + 1;
-          cell = cell * dims + c;
-          colour = colour * 3 + int(c % 3);
+          c[a] = grid.coordinate(a, double(position[size_t(p)].v[a]));
+          colour = colour * 3 + c[a] % 3;
         }
-        entries.push_back(Entry{colour, int(b), cell, p});
+        entries.push_back(Entry{colour, int(b), grid.linear(c), p});
       }
     std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
       if (x.colour != y.colour) return x.colour < y.colour;
@@ -81,6 +77,7 @@ class TlsphRelaxation {
     std::vector<Index> offset{0}, particle;
     std::vector<Real> item_density, item_viscosity;
     colour_first_.assign(size_t(kColours) + 1, 0);
+    Index items = 0;
     for (size_t k = 0; k < entries.size(); ++k) {
       const Entry& e = entries[k];
       particle.push_back(e.particle);
@@ -90,8 +87,7 @@ class TlsphRelaxation {
       offset.push_back(Index(particle.size()));
       item_density.push_back(Real(density[size_t(e.body)]));
       item_viscosity.push_back(Real(viscosity[size_t(e.body)]));
-      item_body_.push_back(e.body);
-      colour_first_[size_t(e.colour) + 1] = Index(item_body_.size());
+      colour_first_[size_t(e.colour) + 1] = ++items;
     }
     for (int c = 1; c <= kColours; ++c) colour_first_[size_t(c)] = std::max(colour_first_[size_t(c)], colour_first_[size_t(c) - 1]);
     from_host<B>(offset, item_offset_);
@@ -153,7 +149,6 @@ class TlsphRelaxation {
   RelaxationSpec spec_;
   std::mt19937_64 random_;
   std::vector<Index> colour_first_;  // items of colour c: [colour_first_[c], colour_first_[c + 1])
-  std::vector<int> item_body_;
   std::vector<Index> host_offset_, host_particle_;
   DeviceVector<B, Index> item_offset_, item_particle_;
   DeviceVector<B, Real> item_density_, item_viscosity_;
