@@ -13,19 +13,25 @@ particle's half spacing), both relative to their values at t = 0, and the same c
 j2), which differs in the consistency condition and in the measure of
 equivalent plastic strain (kernels/materials/j2_return_mapping.hpp).
 
-Writes docs/validation/taylor_bar_seed001.json and .png.
-Usage: scripts/validation/taylor_bar_seed001.py [--res 4 8] [--threads N] [--reuse]
+Writes docs/validation/taylor_bar_seed001.json and .png (another stem with
+--out, e.g. the seed's resolution as a bench run of the seed's model only:
+--res 4 8 16 --models j2_mandel --out taylor_bar_seed001_R16).
+Usage: scripts/validation/taylor_bar_seed001.py [--res 4 8] [--models j2_mandel j2] [--out STEM]
+       [--threads N] [--reuse]
 """
+import argparse
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
 import mfsd_runs as m  # noqa: E402
+import vtu  # noqa: E402
 
 DOCS = os.path.join(m.ROOT, "docs", "validation")
 OUT = os.path.join(m.ROOT, "out", "validation")
 CONFIG = "configs/taylor_bar_seed001_3d.json"
 L0, R0 = 0.0324, 0.0032
+MODELS = {"j2_mandel": "-", "j2": "--"}  # return mapping -> line style
 
 
 def run_case(n, model, threads, reuse):
@@ -42,7 +48,10 @@ def run_case(n, model, threads, reuse):
          "final_length_mm": 1e3 * length[-1], "final_foot_radius_mm": 1e3 * radius[-1],
          "final_shortening": 1 - length[-1] / L0, "final_expansion": radius[-1] / R0 - 1,
          "foot_plastic_strain_final": p["foot.plastic_strain"][-1],
-         "plastic_work_final": e["plastic"][-1], "kinetic_final": e["kinetic"][-1]}
+         "plastic_work_final": e["plastic"][-1], "kinetic_final": e["kinetic"][-1],
+         "energy_balance_initial": e["balance"][0], "energy_balance_final": e["balance"][-1],
+         "hourglass_max_final": e["hourglass_max"][-1],
+         "particle_steps_per_second": timing["particle_steps_per_second"], "outdir": outdir}
     # Relative to the measured start (the lattice does not fit L0 exactly at every R/dp).
     curve = ([1 - v / length[0] for v in length], [v / radius[0] - 1 for v in radius])
     r["initial_length_mm"], r["initial_foot_radius_mm"] = 1e3 * length[0], 1e3 * radius[0]
@@ -50,16 +59,64 @@ def run_case(n, model, threads, reuse):
     return r, curve
 
 
+def snapshots(outdir):
+    """(time, path) of the run's VTU snapshots, from its snapshots.pvd."""
+    import re
+    with open(os.path.join(outdir, "snapshots.pvd")) as f:
+        return [(float(t), os.path.join(outdir, path)) for t, path in
+                re.findall(r'timestep="([^"]+)" part="0" file="([^"]+)"', f.read())]
+
+
+def draw_sections(axes, outdir, dp, times):
+    """The particle row nearest the x-z mid-plane (in the reference state) at the
+    snapshots nearest to `times`, coloured by the equivalent plastic strain
+    (seed 001 Fig. 39 shows the same at 20 us intervals). Returns the largest
+    plastic strain of the last snapshot drawn and the colour mappable."""
+    import numpy as np
+    snaps = snapshots(outdir)
+    largest, image = 0.0, None
+    for a, t in zip(axes, times):
+        time, path = min(snaps, key=lambda s: abs(s[0] - t))
+        d = vtu.read_vtu(path)
+        x = np.asarray(d["points"], dtype=float)
+        strain = np.asarray(d["plastic_strain"], dtype=float)
+        y0 = np.abs(x[:, 1] - np.asarray(d["displacement"], dtype=float)[:, 1])
+        cut = y0 < y0.min() + 0.01 * dp
+        image = a.scatter(1e3 * x[cut, 0], 1e3 * x[cut, 2], c=strain[cut], s=2.5 * (dp / 2e-4) ** 2, cmap="jet",
+                          vmin=0, vmax=2.0, linewidths=0)
+        largest = float(strain.max())
+        a.set_aspect("equal")
+        a.set_xlim(-8, 8)
+        a.set_ylim(-0.5, 33)
+        a.set_facecolor("0.92")
+        a.set_title(f"{1e6 * time:.0f} us", fontsize=9)
+        a.set_xlabel("x [mm]", fontsize=8)
+        a.tick_params(labelsize=7)
+    axes[0].set_ylabel("z [mm]", fontsize=8)
+    return largest, image
+
+
 def main():
-    args = m.study_arguments(__doc__, "resolutions R/dp (default 4 8; seed 001: 16)")
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--res", type=int, nargs="*", help="resolutions R/dp (default 4 8; seed 001: 16)")
+    ap.add_argument("--models", nargs="*", choices=MODELS, help="return mappings (default: both)")
+    ap.add_argument("--out", help="stem of the result files in docs/validation (default taylor_bar_seed001)")
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
+    args = ap.parse_args()
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    result = {"study": "taylor_bar_seed001", "command": "scripts/validation/taylor_bar_seed001.py",
+    result = {"study": "taylor_bar_seed001", "command": " ".join(["scripts/validation/taylor_bar_seed001.py"] + sys.argv[1:]),
               "machine": m.machine(), "runs": {}}
-    fig, ax = plt.subplots(figsize=(6.5, 5))
-    for n in args.res or [4, 8]:
-        for model, style in (("j2_mandel", "-"), ("j2", "--")):
+    fig = plt.figure(figsize=(11, 10))
+    grid = fig.add_gridspec(2, 5, height_ratios=[1, 1.25])
+    fig.subplots_adjust(left=0.06, right=0.98, top=0.95, bottom=0.09, hspace=0.3)
+    ax = fig.add_subplot(grid[0, 1:4])
+    resolutions = args.res or [4, 8]
+    for n in resolutions:
+        for model in args.models or MODELS:
+            style = MODELS[model]
             r, (short, expand) = run_case(n, model, args.threads, args.reuse)
             result["runs"][f"R{n}_{model}"] = r
             print(f"R/dp = {n}, {model}: length {r['final_length_mm']:.3f} mm, foot radius "
@@ -71,8 +128,16 @@ def main():
     ax.set_ylabel("radial expansion of the foot R/R0 - 1")
     ax.legend(fontsize=8)
     ax.set_title("Copper Taylor bar, 227 m/s, 100 us (seed 001 Fig. 38)", fontsize=10)
-    fig.tight_layout()
-    m.write_study(os.path.join(DOCS, "taylor_bar_seed001"), result, fig)
+    finest = result["runs"][f"R{max(resolutions)}_{(args.models or list(MODELS))[0]}"]
+    sections = [fig.add_subplot(grid[1, i]) for i in range(5)]
+    finest["largest_plastic_strain_final"], image = draw_sections(sections, finest["outdir"], finest["dp"],
+                                                                  [2e-5, 4e-5, 6e-5, 8e-5, 1e-4])
+    fig.colorbar(image, ax=sections, shrink=0.8, label="equivalent plastic strain")
+    fig.text(0.45, 0.03, f"mid-section (the particle row nearest y = 0) at R/dp = {finest['R_over_dp']}, "
+             f"{finest['model']} (seed 001 Fig. 39)", ha="center", fontsize=9)
+    for r in result["runs"].values():
+        r["outdir"] = os.path.relpath(r["outdir"], m.ROOT)
+    m.write_study(os.path.join(DOCS, args.out or "taylor_bar_seed001"), result, fig)
 
 
 if __name__ == "__main__":
