@@ -6,6 +6,9 @@ wall (configs/taylor_bar_*.json, genog, damping factor 0.125).
           final length and radius against seed 000 Table 6 (R/dp = 8, 12, 16)
   square  copper, 6 x 6 x 30 mm, linear hardening, 227 m/s: final x of point S
           (middle of a bottom edge) against 6.953 mm (seed 000 Fig. 25, H/dp = 20)
+  square_hard  the square bar at 350 m/s (Fig. 26), genog and none: stability,
+          particle order (largest hourglass indicator over the run), S, von
+          Mises strain at serial instants
   2d      copper, plane strain 6 x 30 mm, 227 m/s and 400 m/s (Fig. 19-21):
           stability, final shape, largest von Mises strain
 
@@ -16,7 +19,7 @@ for a cube of side dp; the initial value is L) and the radius r_max + dp/2;
 the centre-to-centre values are recorded as well.
 
 Writes docs/validation/taylor_bars_<case>.json and .png.
-Usage: scripts/validation/taylor_bars.py round|square|2d [--res 8 12] [--threads N] [--reuse] [--out STEM]
+Usage: scripts/validation/taylor_bars.py round|square|square_hard|2d [--res 8 12] [--threads N] [--reuse] [--out STEM]
 """
 import argparse
 import glob
@@ -149,6 +152,89 @@ def square_bar(args):
     return res, fig
 
 
+def square_hard(args):
+    """Seed 000 Fig. 26: the square copper bar at 350 m/s. The seed shows
+    orderly particles and a smooth field with genog at H/dp = 20; the largest
+    hourglass indicator over the run measures the order, `none` is the contrast."""
+    import numpy as np
+    res = {"study": "taylor_bar_square_hard", "command": "scripts/validation/taylor_bars.py square_hard",
+           "machine": m.machine(), "v0": 350.0, "runs": {}}
+    p_ = plt()
+    resolutions = args.res or [8, 12]
+    fig = p_.figure(figsize=(13, 8))
+    grid = fig.add_gridspec(3, 6, width_ratios=[1, 1, 1, 1, 0.25, 1.9], height_ratios=[1, 1, 0.05])
+    fig.subplots_adjust(left=0.05, right=0.98, top=0.92, bottom=0.07, wspace=0.3, hspace=0.35)
+    history = [fig.add_subplot(grid[0, 5]), fig.add_subplot(grid[1:, 5])]
+    interval = 2e-6  # snapshots and energies.csv rows: the hourglass history at 40 instants
+    times = [2e-5, 4e-5, 6e-5, 8e-5]
+    image = None
+    for hourglass, style in (("genog", "-"), ("none", "--")):
+        for n in resolutions:
+            dp = 0.006 / n
+            tag = f"taylor_square_H{n}_v350_{hourglass}"
+            r, _, probes, _ = run_case("configs/taylor_bar_3d_square.json", tag,
+                                       {"constants.H_over_dp": n, "constants.v0": 350.0,
+                                        "solver.hourglass": hourglass, "output.interval": interval}, 3, dp,
+                                       args.threads, args.reuse)
+            e = m.read_csv(os.path.join(OUT, tag, "energies.csv"))
+            r["dp"] = dp
+            r["S_x"] = probes["S.position.x"][-1]
+            r["hourglass_max_over_run"] = max(e["hourglass_max"])
+            r["completed"] = m.read_json(os.path.join(OUT, tag, "run.json")).get("status")
+            # where the disorder sits at the end: the two reference layers next to the wall
+            # (crushed into one layer at the axis) against the rest of the bar
+            snaps = sorted(glob.glob(os.path.join(OUT, tag, "snapshots", "*.vtu")))
+            last = vtu.read_vtu(snaps[-1])
+            h = np.asarray(last["hourglass"], dtype=float)
+            z0 = np.asarray(last["points"], dtype=float)[:, 2] - np.asarray(last["displacement"], dtype=float)[:, 2]
+            foot = z0 < 2 * dp
+            r["hourglass_median_final"] = float(np.median(h))
+            r["hourglass_p99_final"] = float(np.percentile(h, 99))
+            r["hourglass_max_final_two_wall_layers"] = float(h[foot].max())
+            r["hourglass_max_final_above"] = float(h[~foot].max())
+            res["runs"][f"H{n}_{hourglass}"] = r
+            print(f"square 350 m/s H/dp = {n}, {hourglass}: S x = {1e3 * r['S_x']:.3f} mm, length "
+                  f"{1e3 * r['length']:.2f} mm, hourglass max over the run {r['hourglass_max_over_run']:.3f} "
+                  f"(end: median "
+                  f"{r['hourglass_median_final']:.3f}, p99 {r['hourglass_p99_final']:.3f}, wall layers "
+                  f"{r['hourglass_max_final_two_wall_layers']:.3f}, above {r['hourglass_max_final_above']:.3f}), "
+                  f"max von Mises strain {r['max_von_mises_strain']:.2f}, max plastic strain "
+                  f"{r['max_plastic_strain']:.2f}")
+            label = f"H/dp = {n}, {hourglass}"
+            history[0].plot([1e6 * t for t in e["time"]], e["hourglass_max"], style, label=label)
+            history[1].plot([1e6 * t for t in probes["time"]], [1e3 * x for x in probes["S.position.x"]], style,
+                            label=label)
+            if n != max(resolutions):
+                continue
+            # mid-plane layers (|Y| < dp in the reference state) at serial instants, as Fig. 26
+            row = 0 if hourglass == "genog" else 1
+            for col, t in enumerate(times):
+                d = vtu.read_vtu(snaps[min(len(snaps) - 1, round(t / interval))])
+                x = np.asarray(d["points"], dtype=float)
+                y0 = x[:, 1] - np.asarray(d["displacement"], dtype=float)[:, 1]
+                sel = np.abs(y0) < dp
+                a = fig.add_subplot(grid[row, col])
+                image = a.scatter(1e3 * x[sel, 0], 1e3 * x[sel, 2], c=np.asarray(d["von_mises_strain"])[sel],
+                                  s=max(0.3, 40.0 / n ** 1.5), cmap="jet", vmin=0, vmax=3, linewidths=0)
+                a.set_aspect("equal")
+                a.set_xlim(-12, 12)
+                a.set_ylim(-0.5, 25)
+                a.set_title(f"{hourglass}, {1e6 * t:.0f} us", fontsize=9)
+                a.tick_params(labelsize=7)
+                if col == 0:
+                    a.set_ylabel(f"z [mm] (H/dp = {n})", fontsize=8)
+    fig.colorbar(image, cax=fig.add_subplot(grid[2, :4]), orientation="horizontal", label="von Mises strain")
+    history[0].set_ylabel("largest hourglass indicator")
+    history[0].set_yscale("log")
+    history[1].set_ylabel("x of point S [mm]")
+    history[1].set_xlabel("t [us]")
+    for a in history:
+        a.legend(fontsize=7)
+    fig.suptitle("Square copper Taylor bar, 350 m/s (seed 000 Fig. 26): mid-plane layers coloured by the von "
+                 "Mises strain")
+    return res, fig
+
+
 def bar_2d(args):
     res = {"study": "taylor_bar_2d", "command": "scripts/validation/taylor_bars.py 2d", "machine": m.machine(),
            "runs": {}}
@@ -178,14 +264,14 @@ def bar_2d(args):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case", choices=["round", "square", "2d"])
+    ap.add_argument("case", choices=["round", "square", "square_hard", "2d"])
     ap.add_argument("--res", type=int, nargs="*", help="resolutions (R/dp, H/dp)")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
     ap.add_argument("--out", help="stem of the result files in docs/validation (default taylor_bars_<case>; "
                                   "e.g. a bench resolution on its own: --res 16 --out taylor_bars_round_R16)")
     args = ap.parse_args()
-    res, fig = {"round": round_bar, "square": square_bar, "2d": bar_2d}[args.case](args)
+    res, fig = {"round": round_bar, "square": square_bar, "square_hard": square_hard, "2d": bar_2d}[args.case](args)
     m.write_study(os.path.join(DOCS, args.out or f"taylor_bars_{args.case}"), res, fig)
 
 
