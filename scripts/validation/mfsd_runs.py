@@ -53,13 +53,18 @@ def run_and_read(config, sets, outdir, threads=0, reuse=False):
     return read_csv(os.path.join(outdir, "probes.csv")), read_csv(os.path.join(outdir, "energies.csv")), timing
 
 
-def study_arguments(doc, res_help=None):
+def study_arguments(doc, res_help=None, out_help=None, extra=None):
     """The command line of a study script: --threads, --reuse and, with
-    res_help, --res (a list of resolutions)."""
+    res_help, --res (a list of resolutions), with out_help, --out (the stem of
+    the result files in docs/validation); extra(parser) adds the script's own."""
     import argparse
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    if extra:
+        extra(ap)
     if res_help:
         ap.add_argument("--res", type=int, nargs="*", help=res_help)
+    if out_help:
+        ap.add_argument("--out", help=out_help)
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
     return ap.parse_args()

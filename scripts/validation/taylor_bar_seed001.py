@@ -19,7 +19,6 @@ Writes docs/validation/taylor_bar_seed001.json and .png (another stem with
 Usage: scripts/validation/taylor_bar_seed001.py [--res 4 8] [--models j2_mandel j2] [--out STEM]
        [--threads N] [--reuse]
 """
-import argparse
 import os
 import sys
 
@@ -59,29 +58,20 @@ def run_case(n, model, threads, reuse):
     return r, curve
 
 
-def snapshots(outdir):
-    """(time, path) of the run's VTU snapshots, from its snapshots.pvd."""
-    import re
-    with open(os.path.join(outdir, "snapshots.pvd")) as f:
-        return [(float(t), os.path.join(outdir, path)) for t, path in
-                re.findall(r'timestep="([^"]+)" part="0" file="([^"]+)"', f.read())]
-
-
 def draw_sections(axes, outdir, dp, times):
     """The particle row nearest the x-z mid-plane (in the reference state) at the
     snapshots nearest to `times`, coloured by the equivalent plastic strain
     (seed 001 Fig. 39 shows the same at 20 us intervals). Returns the largest
     plastic strain of the last snapshot drawn and the colour mappable."""
     import numpy as np
-    snaps = snapshots(outdir)
+    snaps = vtu.snapshots(outdir)
     largest, image = 0.0, None
     for a, t in zip(axes, times):
-        time, path = min(snaps, key=lambda s: abs(s[0] - t))
+        time, path = vtu.nearest_snapshot(snaps, t)
         d = vtu.read_vtu(path)
         x = np.asarray(d["points"], dtype=float)
         strain = np.asarray(d["plastic_strain"], dtype=float)
-        y0 = np.abs(x[:, 1] - np.asarray(d["displacement"], dtype=float)[:, 1])
-        cut = y0 < y0.min() + 0.01 * dp
+        cut = vtu.mid_plane(d, dp)
         image = a.scatter(1e3 * x[cut, 0], 1e3 * x[cut, 2], c=strain[cut], s=2.5 * (dp / 2e-4) ** 2, cmap="jet",
                           vmin=0, vmax=2.0, linewidths=0)
         largest = float(strain.max())
@@ -97,13 +87,10 @@ def draw_sections(axes, outdir, dp, times):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--res", type=int, nargs="*", help="resolutions R/dp (default 4 8; seed 001: 16)")
-    ap.add_argument("--models", nargs="*", choices=MODELS, help="return mappings (default: both)")
-    ap.add_argument("--out", help="stem of the result files in docs/validation (default taylor_bar_seed001)")
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
-    args = ap.parse_args()
+    args = m.study_arguments(
+        __doc__, "resolutions R/dp (default 4 8; seed 001: 16)",
+        "stem of the result files in docs/validation (default taylor_bar_seed001)",
+        lambda ap: ap.add_argument("--models", nargs="*", choices=MODELS, help="return mappings (default: both)"))
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -21,8 +21,6 @@ the centre-to-centre values are recorded as well.
 Writes docs/validation/taylor_bars_<case>.json and .png.
 Usage: scripts/validation/taylor_bars.py round|square|square_hard|2d [--res 8 12] [--threads N] [--reuse] [--out STEM]
 """
-import argparse
-import glob
 import os
 import sys
 
@@ -42,7 +40,7 @@ def final_shape(outdir, dim, dp):
     half width (largest |x| + dp/2), largest plastic and von Mises strain, and
     the points, of the last snapshot."""
     import numpy as np
-    f = sorted(glob.glob(os.path.join(outdir, "snapshots", "*.vtu")))[-1]
+    f = vtu.snapshots(outdir)[-1][1]
     d = vtu.read_vtu(f)
     x = np.asarray(d["points"], dtype=float)
     up = x[:, dim - 1]
@@ -53,7 +51,11 @@ def final_shape(outdir, dim, dp):
             "max_plastic_strain": float(np.max(d["plastic_strain"])),
             "max_von_mises_strain": float(np.max(d["von_mises_strain"])),
             "hourglass_max": float(np.max(d["hourglass"])), "points": x,
-            "reference": x - np.asarray(d["displacement"], dtype=float)}
+            "reference": x - np.asarray(d["displacement"], dtype=float),
+            "hourglass": np.asarray(d["hourglass"], dtype=float)}
+
+
+ARRAYS = ("points", "reference", "hourglass")  # final_shape's per-particle fields
 
 
 def run_case(config, tag, sets, dim, dp, threads, reuse):
@@ -66,8 +68,8 @@ def run_case(config, tag, sets, dim, dp, threads, reuse):
            "energy_initial": e["balance"][0], "plastic_work_final": e["plastic"][-1],
            "kinetic_final": e["kinetic"][-1], "wall_work": e["boundary_work"][-1],
            "energy_balance_final": e["balance"][-1]}
-    res.update({k: v for k, v in s.items() if k not in ("points", "reference")})
-    return res, s["points"], p, s["reference"]
+    res.update({k: v for k, v in s.items() if k not in ARRAYS})
+    return res, s, p, e
 
 
 def plt():
@@ -84,7 +86,7 @@ def round_bar(args):
     fig, ax = p_.subplots(1, 2, figsize=(11, 4.5))
     for n in args.res or [4, 8]:
         dp = 0.391e-2 / n
-        r, pts, probes, _ = run_case("configs/taylor_bar_3d_round.json", f"taylor_round_R{n}",
+        r, shape, probes, _ = run_case("configs/taylor_bar_3d_round.json", f"taylor_round_R{n}",
                                   {"constants.R_over_dp": n, "output.interval": 8e-6}, 3, dp, args.threads,
                                   args.reuse)
         r["dp"] = dp
@@ -98,6 +100,7 @@ def round_bar(args):
         print(f"round R/dp = {n}: length {r['length_cm']:.4f} cm, radius {r['radius_cm']:.4f} cm{seed}; "
               f"centres {100 * r['length_centres']:.4f} / {100 * r['radius_centres']:.4f}; "
               f"lift-off {1e3 * r['lift_off']:.2f} mm")
+        pts = shape["points"]
         rr = (pts[:, 0] ** 2 + pts[:, 1] ** 2) ** 0.5
         ax[0].scatter(100 * rr * (1 - 2 * (pts[:, 1] < 0)), 100 * (pts[:, 2] - pts[:, 2].min() + dp / 2), s=1,
                       label=f"R/dp = {n}")
@@ -125,7 +128,7 @@ def square_bar(args):
     fig, ax = p_.subplots(1, 2, figsize=(11, 4.5))
     for n in args.res or [8, 12]:
         dp = 0.006 / n
-        r, pts, probes, ref = run_case("configs/taylor_bar_3d_square.json", f"taylor_square_H{n}",
+        r, shape, probes, _ = run_case("configs/taylor_bar_3d_square.json", f"taylor_square_H{n}",
                                   {"constants.H_over_dp": n, "output.interval": 8e-6}, 3, dp, args.threads,
                                   args.reuse)
         r["dp"] = dp
@@ -136,7 +139,7 @@ def square_bar(args):
         print(f"square H/dp = {n}: S x = {1e3 * r['S_x']:.3f} mm (+dp/2: {1e3 * r['S_x_plus_half_dp']:.3f}); "
               f"seed 6.953 mm at H/dp = 20; length {1e3 * r['length']:.2f} mm")
         ax[0].plot([1e6 * t for t in probes["time"]], [1e3 * x for x in probes["S.position.x"]], label=f"H/dp = {n}")
-        sel = abs(ref[:, 1]) < dp  # the two particle layers next to the mid-plane y = 0
+        pts, sel = shape["points"], abs(shape["reference"][:, 1]) < dp  # the two layers next to the plane y = 0
         ax[1].scatter(1e3 * pts[sel, 0], 1e3 * pts[sel, 2], s=1, label=f"H/dp = {n}")
     ax[0].axhline(1e3 * S_SEED, color="k", ls=":", lw=1, label="seed 000 Fig. 25, H/dp = 20")
     ax[0].set_xlabel("t [us]")
@@ -172,22 +175,17 @@ def square_hard(args):
         for n in resolutions:
             dp = 0.006 / n
             tag = f"taylor_square_H{n}_v350_{hourglass}"
-            r, _, probes, _ = run_case("configs/taylor_bar_3d_square.json", tag,
+            r, shape, probes, e = run_case("configs/taylor_bar_3d_square.json", tag,
                                        {"constants.H_over_dp": n, "constants.v0": 350.0,
                                         "solver.hourglass": hourglass, "output.interval": interval}, 3, dp,
                                        args.threads, args.reuse)
-            e = m.read_csv(os.path.join(OUT, tag, "energies.csv"))
             r["dp"] = dp
             r["S_x"] = probes["S.position.x"][-1]
             r["hourglass_max_over_run"] = max(e["hourglass_max"])
-            r["completed"] = m.read_json(os.path.join(OUT, tag, "run.json")).get("status")
             # where the disorder sits at the end: the two reference layers next to the wall
             # (crushed into one layer at the axis) against the rest of the bar
-            snaps = sorted(glob.glob(os.path.join(OUT, tag, "snapshots", "*.vtu")))
-            last = vtu.read_vtu(snaps[-1])
-            h = np.asarray(last["hourglass"], dtype=float)
-            z0 = np.asarray(last["points"], dtype=float)[:, 2] - np.asarray(last["displacement"], dtype=float)[:, 2]
-            foot = z0 < 2 * dp
+            h = shape["hourglass"]
+            foot = shape["reference"][:, 2] < 2 * dp
             r["hourglass_median_final"] = float(np.median(h))
             r["hourglass_p99_final"] = float(np.percentile(h, 99))
             r["hourglass_max_final_two_wall_layers"] = float(h[foot].max())
@@ -206,13 +204,13 @@ def square_hard(args):
                             label=label)
             if n != max(resolutions):
                 continue
-            # mid-plane layers (|Y| < dp in the reference state) at serial instants, as Fig. 26
+            # the mid-plane layers (reference y = +-dp/2) at serial instants, as Fig. 26
             row = 0 if hourglass == "genog" else 1
+            snaps = vtu.snapshots(os.path.join(OUT, tag))
             for col, t in enumerate(times):
-                d = vtu.read_vtu(snaps[min(len(snaps) - 1, round(t / interval))])
+                d = vtu.read_vtu(vtu.nearest_snapshot(snaps, t)[1])
                 x = np.asarray(d["points"], dtype=float)
-                y0 = x[:, 1] - np.asarray(d["displacement"], dtype=float)[:, 1]
-                sel = np.abs(y0) < dp
+                sel = vtu.mid_plane(d, dp)
                 a = fig.add_subplot(grid[row, col])
                 image = a.scatter(1e3 * x[sel, 0], 1e3 * x[sel, 2], c=np.asarray(d["von_mises_strain"])[sel],
                                   s=max(0.3, 40.0 / n ** 1.5), cmap="jet", vmin=0, vmax=3, linewidths=0)
@@ -242,7 +240,7 @@ def bar_2d(args):
     cases = [(n, v) for n in (args.res or [10, 20, 40]) for v in (227.0, 400.0)]
     fig, ax = p_.subplots(1, 2, figsize=(11, 5))
     for n, v0 in cases:
-        r, pts, probes, _ = run_case("configs/taylor_bar_2d.json", f"taylor_2d_H{n}_v{int(v0)}",
+        r, shape, probes, _ = run_case("configs/taylor_bar_2d.json", f"taylor_2d_H{n}_v{int(v0)}",
                                   {"constants.H_over_dp": n, "constants.v0": v0, "output.interval": 6e-6}, 2,
                                   0.006 / n, args.threads, args.reuse)
         res["runs"][f"H{n}_v{int(v0)}"] = r
@@ -250,7 +248,7 @@ def bar_2d(args):
               f"{1e3 * r['half_width']:.2f} mm, max plastic strain {r['max_plastic_strain']:.2f}, max von Mises "
               f"strain {r['max_von_mises_strain']:.1f}, hourglass max {r['hourglass_max']:.3f}")
         a = ax[0] if v0 == 227.0 else ax[1]
-        a.scatter(1e3 * pts[:, 0], 1e3 * pts[:, 1], s=0.5, label=f"H/dp = {n}")
+        a.scatter(1e3 * shape["points"][:, 0], 1e3 * shape["points"][:, 1], s=0.5, label=f"H/dp = {n}")
     for a, v0 in zip(ax, (227, 400)):
         a.set_aspect("equal")
         a.set_xlabel("x [mm]")
@@ -263,14 +261,11 @@ def bar_2d(args):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("case", choices=["round", "square", "square_hard", "2d"])
-    ap.add_argument("--res", type=int, nargs="*", help="resolutions (R/dp, H/dp)")
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--reuse", action="store_true", help="analyse finished runs again")
-    ap.add_argument("--out", help="stem of the result files in docs/validation (default taylor_bars_<case>; "
-                                  "e.g. a bench resolution on its own: --res 16 --out taylor_bars_round_R16)")
-    args = ap.parse_args()
+    args = m.study_arguments(
+        __doc__, "resolutions (R/dp, H/dp)",
+        "stem of the result files in docs/validation (default taylor_bars_<case>; "
+        "e.g. a bench resolution on its own: --res 16 --out taylor_bars_round_R16)",
+        lambda ap: ap.add_argument("case", choices=["round", "square", "square_hard", "2d"]))
     res, fig = {"round": round_bar, "square": square_bar, "square_hard": square_hard, "2d": bar_2d}[args.case](args)
     m.write_study(os.path.join(DOCS, args.out or f"taylor_bars_{args.case}"), res, fig)
 

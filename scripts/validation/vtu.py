@@ -1,5 +1,8 @@
 """Reads the VTU snapshots mfsd writes (raw appended binary, UInt64 headers)
-into numpy arrays: read_vtu(path) -> {"points": (n, 3), "<field>": array}."""
+into numpy arrays: read_vtu(path) -> {"points": (n, 3), "<field>": array};
+snapshots(outdir) lists a run's snapshots with their times, mid_plane(d, dp)
+selects the particle rows nearest the reference plane y = 0."""
+import os
 import re
 
 import numpy as np
@@ -25,3 +28,22 @@ def read_vtu(path):
             arr = arr.reshape(-1, comps)
         out[attrs.get("Name", "points")] = arr
     return out
+
+
+def snapshots(outdir):
+    """(time, path) of a run's VTU snapshots, from its snapshots.pvd."""
+    with open(os.path.join(outdir, "snapshots.pvd")) as f:
+        return [(float(t), os.path.join(outdir, path)) for t, path in
+                re.findall(r'timestep="([^"]+)" part="0" file="([^"]+)"', f.read())]
+
+
+def nearest_snapshot(snaps, t):
+    """(time, path) of the snapshot nearest to t in a snapshots() list."""
+    return min(snaps, key=lambda s: abs(s[0] - t))
+
+
+def mid_plane(d, dp):
+    """Boolean mask of the particles whose reference y is nearest 0 (to 1 % of
+    dp: one row, or the two rows at +-dp/2 of a lattice with an even count)."""
+    y0 = np.abs(np.asarray(d["points"], dtype=float)[:, 1] - np.asarray(d["displacement"], dtype=float)[:, 1])
+    return y0 < y0.min() + 0.01 * dp
