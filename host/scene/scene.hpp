@@ -141,10 +141,10 @@ struct MeasurePlaneSpec {
 // implicitly pair by pair, in a step with probability random_ratio.
 struct RelaxationSpec {
   bool enabled = false;
-  double viscosity = 0;        // eta, Pa s (one of viscosity and factor)
-  double factor = 0;           // eta = factor p rho0 c0 h / CFL per body (docs/theory.md)
-  double random_ratio = 0.2;   // p: a step relaxes with probability p, with eta / p
-  unsigned long long seed = 1;  // of the random choice (runs repeat exactly)
+  double viscosity = 0;               // eta, Pa s (one of viscosity and factor)
+  double factor = 0;                  // eta = factor p rho0 c0 h / CFL per body (docs/theory.md)
+  double random_ratio = 0.2;          // p: a step relaxes with probability p, with eta / p
+  unsigned long long seed = 1;        // of the random choice (runs repeat exactly)
   double t_start = 0, t_end = 1e300;  // relaxes the steps that start in [t_start, t_end)
 };
 
@@ -156,6 +156,7 @@ struct SolverSpec {
   double zeta = 1.07;
   double genog_alpha = 8.0;
   GenogLimiter genog_limiter = GenogLimiter::paper;
+  GenogForm genog_form = GenogForm::vector;
   bool correction_in_force = true;
   double damping_factor = 1.0;
   DampingForm damping_form = DampingForm::isotropic;

@@ -104,6 +104,8 @@ SolverSpec read_solver(JsonNode s, int dim) {
     spec.genog_alpha = g.number("alpha", 8.0, Range::positive());
     spec.genog_limiter =
         g.choice("limiter", {"paper", "capped"}, "paper") == "paper" ? GenogLimiter::paper : GenogLimiter::capped;
+    spec.genog_form =
+        g.choice("form", {"vector", "dyadic"}, "vector") == "vector" ? GenogForm::vector : GenogForm::dyadic;
     g.finish();
   }
   {
@@ -121,8 +123,7 @@ SolverSpec read_solver(JsonNode s, int dim) {
                        "one of viscosity (eta, Pa s) and factor (eta = factor p rho0 c0 h / CFL)");
     if (r.has("viscosity")) spec.relaxation.viscosity = r.number("viscosity", Range::positive());
     if (r.has("factor")) spec.relaxation.factor = r.number("factor", Range::positive());
-    spec.relaxation.random_ratio =
-        r.number("random_ratio", 0.2, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+    spec.relaxation.random_ratio = r.number("random_ratio", 0.2, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
     const double seed = r.number("seed", 1.0, Range::non_negative());
     if (seed != std::floor(seed) || seed > 9.0e15)
       throw SceneError(r.key_path("seed"), std::to_string(seed), "a whole number >= 0");

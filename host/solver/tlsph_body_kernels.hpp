@@ -39,6 +39,7 @@ struct BodyKernelSettings {
   double zeta;
   bool correction_in_force;
   GenogLimiter genog_limiter;
+  GenogForm genog_form;
   double genog_alpha;
   double damping_normal;  // factor rho0 h c0 / 2
   double damping_shear;   // factor rho0 h c / 2 on off-diagonal components
@@ -73,19 +74,20 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
   void acceleration(const TlsphViews<D, Real>& v, Real dt) const override {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
-    AccelerationFunctor<D, Real, Hourglass> f{v.pairs,
-                                              v.force_stress,
-                                              v.shear_coefficient,
-                                              v.shear_stress,
-                                              v.inverse_F,
-                                              v.displacement,
-                                              v.neighbor_record,
-                                              Real(1.0 / s_.density),
-                                              g,
-                                              GenogWeight<Real>{s_.genog_limiter, Real(s_.genog_alpha * D)},
-                                              dt,
-                                              v.acceleration,
-                                              v.velocity};
+    AccelerationFunctor<D, Real, Hourglass> f{
+        v.pairs,
+        v.force_stress,
+        v.shear_coefficient,
+        v.shear_stress,
+        v.inverse_F,
+        v.displacement,
+        v.neighbor_record,
+        Real(1.0 / s_.density),
+        g,
+        GenogWeight<Real>{s_.genog_limiter, Real(s_.genog_alpha * D), s_.genog_form},
+        dt,
+        v.acceleration,
+        v.velocity};
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
@@ -99,11 +101,11 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
-    return transform_reduce<B>(s_.range.begin, s_.range.end,
-                               EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state,
-                                                                v.velocity, v.displacement, v.volume,
-                                                                v.damping_work, Real(s_.density), g},
-                               EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0}, EnergySumsPlus{});
+    return transform_reduce<B>(
+        s_.range.begin, s_.range.end,
+        EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state, v.velocity, v.displacement,
+                                         v.volume, v.damping_work, Real(s_.density), g},
+        EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0}, EnergySumsPlus{});
   }
 
  private:

@@ -226,8 +226,9 @@ class TlsphSolver final : public Solver {
         const double rho = scene_.bodies[b].material.density;
         density.push_back(rho);
         // eta = factor p rho0 c0 h / CFL: factor 1 makes (eta/p) dt / (rho0 h^2) = 1 (docs/theory.md).
-        viscosity.push_back(r.factor > 0 ? r.factor * r.random_ratio * rho * props(b).c0 * props(b).h / scene_.solver.cfl
-                                         : r.viscosity);
+        viscosity.push_back(r.factor > 0
+                                ? r.factor * r.random_ratio * rho * props(b).c0 * props(b).h / scene_.solver.cfl
+                                : r.viscosity);
         support = std::max(support, 2.0 * props(b).h);
       }
       // Held by the relaxation: the particles of clamps and velocity conditions.
@@ -238,8 +239,7 @@ class TlsphSolver final : public Solver {
         if (scene_.conditions[c].type == ConditionSpec::Type::velocity)
           for (long id : init_.condition_particles[c].ids) held[size_t(where[size_t(id)])] = 1;
       relaxation_.setup(scene_.solver.relaxation, ranges_, density, viscosity,
-                        to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position)), support,
-                        held);
+                        to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position)), support, held);
     }
     std::vector<Index> probe_index;
     probe_offsets_.assign(1, 0);
@@ -548,6 +548,7 @@ class TlsphSolver final : public Solver {
     k.zeta = s.zeta;
     k.correction_in_force = s.correction_in_force;
     k.genog_limiter = s.genog_limiter;
+    k.genog_form = s.genog_form;
     k.genog_alpha = s.genog_alpha;
     // tau_d = (chi/2) db/dt, chi = rho0 c h / 2 (seed 003 eq. 23): coefficient of E_dot is rho0 c h / 2.
     const double base = s.damping_factor * spec.material.density * p.h * 0.5;

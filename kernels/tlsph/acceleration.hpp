@@ -32,6 +32,7 @@ template <class Real>
 struct GenogWeight {
   GenogLimiter limiter;
   Real alpha_d;  // alpha * d (paper form)
+  GenogForm form = GenogForm::vector;
 
   static constexpr Real threshold = Real(0.05);
 
@@ -39,6 +40,18 @@ struct GenogWeight {
     const Real excess = e_hat_norm - threshold;
     if (limiter == GenogLimiter::paper) return alpha_d * beta * math::clamp(excess, Real(0), Real(1));  // eq. 33
     return math::min(Real(10) * math::max(excess, Real(0)), Real(1));
+  }
+
+  // What an active pair adds to the sum besides its (S_i + S_j) g part, in
+  // units of (S_i + S_j): with g = V0_j dW e0 and h = V0_j dW e_hat,
+  //   vector (eq. 32): phi h
+  //   dyadic: (c (x) c) g - g = (g + phi h)(1 + phi h.g / g.g) - g, since
+  //           c . e0 = 1 + phi e_hat . e0 (c = e0 + phi e_hat, grad W = dW e0).
+  template <int D>
+  MFSD_HD Vec<D, Real> correction(const Vec<D, Real>& g, const Vec<D, Real>& h, Real phi, Real g2) const {
+    if (form == GenogForm::vector) return h * phi;
+    const Real c = phi * dot(h, g) / g2;
+    return h * phi + (g + h * phi) * c;
   }
 };
 
@@ -99,7 +112,7 @@ struct AccelerationFunctor {
         const Real h2 = squared_norm(h), g2 = squared_norm(g);
         if (h2 > GenogWeight<Real>::threshold * GenogWeight<Real>::threshold * g2) {
           const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
-          sum += (Si + shear_stress[j]) * h * phi;  // eq. 32, phi e_hat part
+          sum += (Si + shear_stress[j]) * genog_weight.correction(g, h, phi, g2);  // eq. 32, phi e_hat part
         }
       }
     }
@@ -235,7 +248,7 @@ struct AccelerationFunctor {
         const Real h2 = squared_norm(h), g2 = squared_norm(g);
         if (h2 > thr2 * g2) {
           const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
-          sum += (Si + shear_stress[j]) * h * phi;  // eq. 32, phi e_hat part
+          sum += (Si + shear_stress[j]) * genog_weight.correction(g, h, phi, g2);  // eq. 32, phi e_hat part
         }
       }
     }

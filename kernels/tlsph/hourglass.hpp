@@ -22,4 +22,10 @@ enum class GenogLimiter : int {
   capped = 1,  // phi = min(10 max(|e_hat| - 0.05, 0), 1) (the authors' later code)
 };
 
+// How the GENOG correction enters a pair's shear term.
+enum class GenogForm : int {
+  vector = 0,  // (S_i + S_j)(e0 + phi e_hat) dW V0 (seed 000 eq. 32)
+  dyadic = 1,  // (S_i + S_j)(c (x) c) grad W V0, c = e0 + phi e_hat (the authors' later code)
+};
+
 }  // namespace mfsd
