@@ -14,6 +14,13 @@ using namespace mfsd;
 
 namespace {
 
+// The checkout the configs are read from: MFSD_SOURCE_DIR in the environment
+// (a build run on another machine, scripts/gpu_check.sh), else the build's.
+std::string source_dir() {
+  const char* v = std::getenv("MFSD_SOURCE_DIR");
+  return v && *v ? std::string(v) : std::string(MFSD_SOURCE_DIR);
+}
+
 bool gpu_required() {
   const char* v = std::getenv("MFSD_REQUIRE_GPU");
   return v && std::string(v) == "1";
@@ -29,7 +36,7 @@ bool gpu_required() {
 
 std::vector<ProbeSample> run(const std::string& config, const std::vector<std::string>& sets,
                              const std::string& backend, Precision precision, long steps) {
-  const SceneDocument doc = load_scene_file(std::string(MFSD_SOURCE_DIR) + "/configs/" + config, sets);
+  const SceneDocument doc = load_scene_file(source_dir() + "/configs/" + config, sets);
   const InitialParticles particles = generate_particles(doc.scene);
   SolverOptions o;
   o.backend = backend;
