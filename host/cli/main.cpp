@@ -60,6 +60,11 @@ void print_version() {
   std::printf("precisions: float, double; dimensions: 2, 3\n");
 }
 
+// Accepted but doubtful input (scene.warnings), on stderr.
+void print_warnings(const Scene& scene) {
+  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
+
 int command_check(int argc, char** argv) {
   cxxopts::Options opts("mfsd check", "validate a scene");
   opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())("scene", "scene file",
@@ -72,6 +77,7 @@ int command_check(int argc, char** argv) {
   if (r.count("set")) sets = r["set"].as<std::vector<std::string>>();
   const SceneDocument doc = load_scene_file(r["scene"].as<std::string>(), sets);
   const InitialParticles particles = generate_particles(doc.scene);
+  print_warnings(doc.scene);
   std::cout << check_summary(doc, particles);
   return 0;
 }
@@ -89,6 +95,7 @@ int command_run(int argc, char** argv, const std::string& command_line) {
   if (r.count("set")) sets = r["set"].as<std::vector<std::string>>();
   const SceneDocument doc = r.count("scene") ? load_scene_file(r["scene"].as<std::string>(), sets)
                                              : load_scene_text(default_scene_text(), "<default scene>", sets);
+  print_warnings(doc.scene);
   RunOptions o;
   o.command_line = command_line;
   o.solver.precision = doc.scene.solver.precision;

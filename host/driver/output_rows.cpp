@@ -7,7 +7,7 @@ std::vector<std::string> probe_columns(const Scene& scene) {
   const char* axes[3] = {"x", "y", "z"};
   for (auto& p : scene.probes)
     for (auto& f : p.fields) {
-      if (f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain") {
+      if (f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain" || f == "phase_field") {
         cols.push_back(p.name + "." + f);
       } else {
         for (int a = 0; a < scene.dimension; ++a) cols.push_back(p.name + "." + f + "." + axes[a]);
@@ -28,6 +28,8 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
         row.push_back(s[k].von_mises_strain);
       } else if (f == "plastic_strain") {
         row.push_back(s[k].plastic_strain);
+      } else if (f == "phase_field") {
+        row.push_back(s[k].phase_field);
       } else {
         const Point3& v = f == "position" ? s[k].position : (f == "displacement" ? s[k].displacement : s[k].velocity);
         for (int a = 0; a < scene.dimension; ++a) row.push_back(v[a]);
@@ -54,6 +56,11 @@ std::vector<std::string> energy_columns(const Scene& scene) {
   for (auto& b : scene.bodies) {
     for (const char* q : kBodyEnergyColumns) cols.push_back(b.name + "." + q);
     for (int a = 0; a < scene.dimension; ++a) cols.push_back(b.name + ".momentum." + axes[a]);
+  }
+  // Scenes with fracture: the crack surface energy, in total and per body, last.
+  if (has_fracture_body(scene)) {
+    cols.push_back("crack_surface");
+    for (auto& b : scene.bodies) cols.push_back(b.name + ".crack_surface");
   }
   return cols;
 }
@@ -93,6 +100,27 @@ std::vector<double> energy_row(double time, const EnergySample& e, int dimension
                            b.gravity_work, b.damping, b.relaxation, b.balance()});
     for (int a = 0; a < dimension; ++a) row.push_back(b.momentum[a]);
   }
+  if (e.with_fracture) {
+    double total = 0;
+    for (auto& b : e.bodies) total += b.crack_surface;
+    row.push_back(total);
+    for (auto& b : e.bodies) row.push_back(b.crack_surface);
+  }
+  return row;
+}
+
+std::vector<std::string> crack_columns(const Scene& scene) {
+  std::vector<std::string> cols{"time", "broken"};
+  const char* axes[3] = {"x", "y", "z"};
+  for (int a = 0; a < scene.dimension; ++a) cols.push_back(std::string("tip.") + axes[a]);
+  cols.push_back("length");
+  return cols;
+}
+
+std::vector<double> crack_row(const Scene& scene, double time, const CrackTipSample& c) {
+  std::vector<double> row{time, c.broken ? 1.0 : 0.0};
+  for (int a = 0; a < scene.dimension; ++a) row.push_back(c.tip[size_t(a)]);
+  row.push_back(c.length);
   return row;
 }
 

@@ -16,6 +16,9 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
 std::vector<std::string> energy_columns(const Scene& scene);
 std::vector<double> energy_row(double time, const EnergySample& e, int dimension);
 
+// crack_<body>.csv: time, broken (0/1), tip.x tip.y (tip.z), length (kernels/fracture/crack_tip.hpp).
+std::vector<std::string> crack_columns(const Scene& scene);
+std::vector<double> crack_row(const Scene& scene, double time, const CrackTipSample& c);
 std::vector<std::string> boundary_force_columns(const Scene& scene);
 std::vector<double> boundary_force_row(const Scene& scene, double time, const std::vector<BoundaryForceSample>& s);
 

@@ -66,7 +66,9 @@ void remove_previous_outputs(const std::string& dir) {
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
   for (auto& e : fs::directory_iterator(dir))
-    if (e.path().filename().string().rfind("measure_", 0) == 0 && e.path().extension() == ".csv") fs::remove(e.path());
+    if ((e.path().filename().string().rfind("measure_", 0) == 0 || e.path().filename().string().rfind("crack_", 0) == 0) &&
+        e.path().extension() == ".csv")
+      fs::remove(e.path());
 }
 
 }  // namespace
@@ -116,6 +118,11 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   std::vector<std::unique_ptr<CsvWriter>> measure_csv;
   for (auto& mp : scene.measure_planes)
     measure_csv.push_back(std::make_unique<CsvWriter>(dir + "/measure_" + mp.name + ".csv", measure_columns(scene)));
+  const std::vector<CrackSpec> cracks = crack_specs(scene);
+  std::vector<std::unique_ptr<CsvWriter>> crack_csv;
+  for (const CrackSpec& c : cracks)
+    crack_csv.push_back(
+        std::make_unique<CsvWriter>(dir + "/crack_" + scene.bodies[c.body].name + ".csv", crack_columns(scene)));
   std::unique_ptr<CsvWriter> forces_csv;
   if (!scene.clamps.empty() || !scene.conditions.empty() || !scene.walls.empty() || !scene.contact.rigid_bodies.empty())
     forces_csv = std::make_unique<CsvWriter>(dir + "/boundary_forces.csv", boundary_force_columns(scene));
@@ -132,6 +139,10 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     const auto t0 = Clock::now();
     if (!scene.probes.empty()) probes_csv.row(probe_row(scene, solver->time(), solver->probes()));
     if (forces_csv) forces_csv->row(boundary_force_row(scene, solver->time(), solver->boundary_forces()));
+    if (!crack_csv.empty()) {
+      const auto tips = solver->crack_tips();
+      for (size_t k = 0; k < tips.size(); ++k) crack_csv[k]->row(crack_row(scene, solver->time(), tips[k]));
+    }
     if (!measure_csv.empty()) {
       const auto m = solver->measures();
       for (size_t k = 0; k < m.size(); ++k)

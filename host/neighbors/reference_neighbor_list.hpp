@@ -53,11 +53,14 @@ CellGrid<D> make_cell_grid(const double* lo, const double* hi, double cell_size,
 
 // Sorts particles by (body, cell) and, when `reorder`, permutes every field of
 // the set accordingly; then builds the CSR list. Reads the set-up field
-// reference_position_double, the body ids and the volumes.
+// reference_position_double, the body ids and the volumes. Pairs that a notch
+// cuts are left out (kernels/fracture/notch.hpp), before B0 and the gradient
+// sums are formed from the list.
 template <class B, int D, class Real>
 ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& particles,
                                                                 const std::vector<BodySearch>& bodies, bool reorder,
-                                                                bool with_beta) {
+                                                                bool with_beta,
+                                                                const std::vector<Notch<D>>& notches = {}) {
   const Index n = particles.size();
   // Grid over the reference bounding box, cell edge = the largest support radius.
   const auto host_x = to_host<B>(particles.template buffer<Vec<D, double>>(field::reference_position_double));
@@ -90,7 +93,13 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
                            raw(start),
                            raw(end),
                            reorder ? nullptr : raw(order),
-                           0.0};
+                           0.0,
+                           NotchSet<D>{}};
+  DeviceVector<B, Notch<D>> notch_buffer;
+  if (!notches.empty()) {
+    from_host<B>(notches, notch_buffer);
+    hood.notches = NotchSet<D>{raw(notch_buffer), int(notches.size())};
+  }
   DeviceVector<B, Index> count(size_t(n), 0);
   for (const auto& b : bodies) {
     hood.radius2 = std::pow(2.0 * b.smoothing_length, 2);

@@ -54,6 +54,7 @@ void write_vtu(const std::string& path, const Snapshot& s, bool single) {
   a.real("hourglass", 1, s.hourglass, single);
   a.real("von_mises_strain", 1, s.von_mises_strain, single);
   if (!s.plastic_strain.empty()) a.real("plastic_strain", 1, s.plastic_strain, single);
+  for (const auto& f : s.fields) a.real(f.name.c_str(), 1, f.values, single);
   const std::string point_xml = a.xml;
   a.xml.clear();
   a.real(nullptr, 3, s.position, single);

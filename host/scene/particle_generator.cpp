@@ -243,6 +243,48 @@ std::vector<std::pair<std::string, double>> body_expression_constants(const Scen
   return c;
 }
 
+// Fracturing bodies: every notch must reach into its body (its bounding box,
+// widened by a spacing, meets the body's particles), and restrict_phase_field
+// selections give a per-particle lower bound on s.
+void fracture_setup(const Scene& scene, InitialParticles& P) {
+  const int dim = scene.dimension;
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const FractureSpec& f = scene.bodies[b].material.fracture;
+    if (!f.enabled) continue;
+    const std::string path = "/bodies/" + std::to_string(b) + "/material/fracture";
+    const auto r = P.body_range[b];
+    Point3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (long i = r.begin; i < r.end; ++i)
+      for (int a = 0; a < dim; ++a) {
+        lo[size_t(a)] = std::min(lo[size_t(a)], P.position[size_t(i)][size_t(a)]);
+        hi[size_t(a)] = std::max(hi[size_t(a)], P.position[size_t(i)][size_t(a)]);
+      }
+    const double dp = scene.bodies[b].spacing;
+    for (size_t k = 0; k < f.notches.size(); ++k) {
+      bool meets = true;
+      for (int a = 0; a < dim; ++a) {
+        double nlo = 1e300, nhi = -1e300;
+        for (const Point3& x : f.notches[k]) nlo = std::min(nlo, x[size_t(a)]), nhi = std::max(nhi, x[size_t(a)]);
+        meets = meets && nhi >= lo[size_t(a)] - dp && nlo <= hi[size_t(a)] + dp;
+      }
+      if (!meets)
+        throw SceneError(path + "/notches/" + std::to_string(k) + "/points",
+                         "a notch outside body '" + scene.bodies[b].name + "' (particles span " + point_text(lo, dim) +
+                             " to " + point_text(hi, dim) + ")",
+                         "a notch that cuts into its body");
+    }
+    for (size_t k = 0; k < f.restrictions.size(); ++k) {
+      SelectionSpec sel;
+      sel.kind = SelectionSpec::Kind::expression;
+      sel.expression = f.restrictions[k].where;
+      const auto ids = select_particles(scene, b, sel, path + "/restrict_phase_field/" + std::to_string(k), P);
+      if (P.phase_field_lower.empty()) P.phase_field_lower.assign(P.size(), 0.0);
+      for (long i : ids)
+        P.phase_field_lower[size_t(i)] = std::max(P.phase_field_lower[size_t(i)], f.restrictions[k].minimum);
+    }
+  }
+}
+
 InitialParticles generate_particles(const Scene& scene) {
   const int dim = scene.dimension;
   InitialParticles P;
@@ -385,6 +427,7 @@ InitialParticles generate_particles(const Scene& scene) {
                        "a radius that holds at least one particle around the point");
     P.probe_particles.push_back(members);
   }
+  fracture_setup(scene, P);
   return P;
 }
 

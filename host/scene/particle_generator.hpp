@@ -36,6 +36,7 @@ struct InitialParticles {
   std::vector<std::vector<Point3>> rigid_markers;    // per rigid body: surface markers (its shape as given)
   std::vector<unsigned char> surface;                // faces a particle exposes, 0 inside (surface.hpp)
   std::vector<Point3> displacement;                  // initial displacement; empty when no body sets one
+  std::vector<double> phase_field_lower;             // restrict_phase_field bounds on s; empty when none
 
   size_t size() const { return position.size(); }
 };

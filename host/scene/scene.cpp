@@ -1,11 +1,64 @@
 #include "host/scene/scene.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace mfsd {
 
 bool has_plastic_body(const Scene& scene) {
   for (const auto& b : scene.bodies)
     if (b.material.plastic()) return true;
   return false;
+}
+
+bool has_fracture_body(const Scene& scene) {
+  for (const auto& b : scene.bodies)
+    if (b.material.fracture.enabled) return true;
+  return false;
+}
+
+std::vector<CrackSpec> crack_specs(const Scene& scene) {
+  std::vector<CrackSpec> out;
+  const int dim = scene.dimension;
+  for (size_t b = 0; b < scene.bodies.size(); ++b) {
+    const FractureSpec& f = scene.bodies[b].material.fracture;
+    if (!f.enabled) continue;
+    CrackSpec c{b, {0, 0, 0}, f.crack_direction, 0.0};
+    if (c.direction == Point3{0, 0, 0} && dim == 2 && !f.notches.empty())
+      for (int a = 0; a < 2; ++a) c.direction[size_t(a)] = f.notches[0][1][size_t(a)] - f.notches[0][0][size_t(a)];
+    const double norm = std::sqrt(c.direction[0] * c.direction[0] + c.direction[1] * c.direction[1] +
+                                  c.direction[2] * c.direction[2]);
+    if (norm == 0) continue;
+    for (auto& x : c.direction) x /= norm;
+    if (!f.notches.empty()) {
+      const auto& p = f.notches[0];
+      if (dim == 2) {
+        c.origin = p[1];
+        // The notch clipped to the body's bounding box (Liang-Barsky).
+        const Bounds box = scene.bodies[b].geometry.bounds(dim);
+        double t0 = 0, t1 = 1;
+        for (int a = 0; a < 2; ++a) {
+          const double d = p[1][size_t(a)] - p[0][size_t(a)], lo = box.min[size_t(a)] - p[0][size_t(a)],
+                       hi = box.max[size_t(a)] - p[0][size_t(a)];
+          if (d == 0) {
+            if (lo > 0 || hi < 0) t1 = -1;
+            continue;
+          }
+          double ta = lo / d, tb = hi / d;
+          if (ta > tb) std::swap(ta, tb);
+          t0 = std::max(t0, ta);
+          t1 = std::min(t1, tb);
+        }
+        const double len = std::hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
+        c.notch_length = t1 > t0 ? (t1 - t0) * len : 0.0;
+      } else {
+        for (int a = 0; a < 3; ++a)
+          c.origin[size_t(a)] = 0.25 * (p[0][size_t(a)] + p[1][size_t(a)] + p[2][size_t(a)] + p[3][size_t(a)]);
+      }
+    }
+    out.push_back(c);
+  }
+  return out;
 }
 
 const char* to_string(MaterialModel m) {

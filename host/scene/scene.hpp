@@ -19,6 +19,23 @@ enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/
 enum class DampingForm { isotropic, split };  // one wave speed | c0 normal, c_s shear
 enum class Precision { single_precision, double_precision };
 
+// Phase-field brittle fracture of a body (seed 001 sections 2.2-2.4, 3.3.1;
+// kernels/fracture/): the material's tensile energy is degraded by s^2.
+struct PhaseFieldRestriction {
+  std::string where;   // expression of x0 y0 z0 (and the constants): non-zero selects
+  double minimum = 1;  // lower bound on s there (seed 001 "restrictphi", e.g. 0.9999)
+};
+struct FractureSpec {
+  bool enabled = false;
+  double energy_release_rate = 0;  // Gc [J/m^2]
+  double length_scale = 0;         // eps0 [m]
+  double phase_field_limit = 0.1;  // s_l (seed 001 eq. 63)
+  double speed = 0;                // c of eq. 61 [m/s]; 0 = the P-wave speed sqrt((K + 4G/3)/rho0)
+  std::vector<std::vector<Point3>> notches;  // 2 ends (2-D) or 4 corners (3-D), reference configuration
+  std::vector<PhaseFieldRestriction> restrictions;
+  Point3 crack_direction{0, 0, 0};  // of the crack-tip output; zero = along the first notch (2-D)
+};
+
 struct MaterialSpec {
   MaterialModel model = MaterialModel::neo_hookean;
   double density = 0;
@@ -38,6 +55,7 @@ struct MaterialSpec {
   double flow_exponent = 1;
   // j2_mandel (seed 001 eq. 32-52): the same elasticity and linear hardening,
   // seed 001's return on C_p with the Mandel stress (j2_return_mapping.hpp).
+  FractureSpec fracture;
   bool plastic() const { return model == MaterialModel::j2 || model == MaterialModel::j2_mandel; }
 };
 
@@ -195,10 +213,25 @@ struct Scene {
   OutputSpec output;
   Bounds bounds;  // particles leaving it stop the run
   std::vector<std::pair<std::string, double>> constants;
+  std::vector<std::string> warnings;  // accepted but doubtful input, printed by check and run
 };
 
 // Whether some body carries a plastic state.
 bool has_plastic_body(const Scene& scene);
+// Whether some body's material has fracture.
+bool has_fracture_body(const Scene& scene);
+
+// The crack followed by the crack-tip output (crack_<body>.csv) of a
+// fracturing body: from `origin` (the first notch's tip in 2-D, the centre of
+// its quadrilateral in 3-D) along `direction` (material.fracture.crack_direction,
+// else the first notch's direction in 2-D); `notch_length` is the part of
+// that notch inside the body's bounding box (2-D; 0 in 3-D).
+struct CrackSpec {
+  size_t body;
+  Point3 origin, direction;
+  double notch_length;
+};
+std::vector<CrackSpec> crack_specs(const Scene& scene);
 
 const char* to_string(MaterialModel m);
 const char* to_string(HourglassControl h);

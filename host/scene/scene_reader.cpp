@@ -34,7 +34,7 @@ void line_column(const std::string& text, size_t byte, size_t& line, size_t& col
   }
 }
 
-MaterialSpec read_material(JsonNode m) {
+MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std::string>& warnings) {
   MaterialSpec spec;
   const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel"});
   spec.model = model == "neo_hookean" ? MaterialModel::neo_hookean
@@ -44,6 +44,7 @@ MaterialSpec read_material(JsonNode m) {
   spec.density = m.number("density", Range::positive());
   spec.youngs_modulus = m.number("youngs_modulus", Range::positive());
   spec.poisson_ratio = m.number("poisson_ratio", Range{-1.0, 0.5, true, true, "a number in (-1, 0.5)"});
+  if (auto f = m.optional_object("fracture")) spec.fracture = read_fracture(*f, spec, spacing, dim, warnings);
   if (spec.plastic()) {
     spec.yield_stress = m.number("yield_stress", Range::positive());
     spec.hardening_modulus = m.number("hardening_modulus", 0.0, Range::non_negative());
@@ -262,7 +263,13 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
       throw SceneError(node.key_path("name"), "\"" + body.name + "\"", "a name no other body has");
     body.spacing = node.number("spacing", Range::positive());
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
-    body.material = read_material(node.object("material"));
+    body.material = read_material(node.object("material"), body.spacing, dim, scene.warnings);
+    if (body.material.fracture.enabled && scene.solver.hourglass != HourglassControl::none)
+      throw SceneError("/solver/hourglass",
+                       std::string("\"") + to_string(scene.solver.hourglass) + "\" with fracture in body \"" +
+                           body.name + "\"",
+                       "\"none\": the degraded stress of phase-field fracture is implemented in the standard "
+                       "TLSPH form (seed 001), not in the hourglass-controlled splits");
     if (body.material.plastic() && scene.solver.hourglass == HourglassControl::laplacian)
       throw SceneError(node.key_path("material") + "/model",
                        std::string("\"") + to_string(body.material.model) + "\" with solver.hourglass \"laplacian\"",
@@ -322,14 +329,14 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     probe.radius = node.number("radius", 0.0, Range::non_negative());
     auto fields = node.array("fields", false);
     const std::set<std::string> allowed = {"position", "displacement",     "velocity",      "von_mises",
-                                           "J",        "von_mises_strain", "plastic_strain"};
+                                           "J",        "von_mises_strain", "plastic_strain", "phase_field"};
     for (size_t k = 0; k < fields.size(); ++k) {
       const Json& f = *fields[k];
       const std::string fp = node.key_path("fields") + "/" + std::to_string(k);
       if (!f.is_string() || !allowed.count(f.get<std::string>()))
         throw SceneError(fp, json_text(f),
                          "one of \"position\", \"displacement\", \"velocity\", \"von_mises\", \"J\", "
-                         "\"von_mises_strain\", \"plastic_strain\"");
+                         "\"von_mises_strain\", \"plastic_strain\", \"phase_field\"");
       probe.fields.push_back(f.get<std::string>());
       node.resolved()["fields"][k] = f;
     }

@@ -49,6 +49,15 @@ void read_rigid_bodies(JsonNode& root, Scene& scene);
 // contact into scene.contact (contact_reader.cpp); after bodies and rigid bodies.
 void read_contact(JsonNode& root, Scene& scene);
 
+// `key` as `count` points of `dim` coordinates (numbers or constant
+// expressions), written back evaluated into the resolved scene; `what` says
+// what they are in an error (points_reader.cpp).
+std::vector<Point3> read_points(JsonNode& node, const std::string& key, size_t count, int dim, const std::string& what);
+
+// material.fracture of a body with the given spacing (fracture_reader.cpp).
+FractureSpec read_fracture(JsonNode node, const MaterialSpec& material, double spacing, int dim,
+                           std::vector<std::string>& warnings);
+
 // measure_planes[] into scene.measure_planes (measure_plane_reader.cpp).
 void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 

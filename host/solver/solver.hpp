@@ -24,18 +24,28 @@ struct Snapshot {
   std::vector<double> von_mises, jacobian, hourglass;    // n
   std::vector<double> von_mises_strain;                  // n
   std::vector<double> plastic_strain;                    // n when some body is plastic, else empty
+  // Further per-particle scalars that a solver or model registers by name
+  // (e.g. phase_field); every writer writes each of them under its name.
+  struct Field {
+    std::string name;
+    std::vector<double> values;  // n
+  };
+  std::vector<Field> fields;
 };
 
 // Energies of one body (J; per metre of depth in 2-D). Work done on the body
 // by its loads (external) and by its velocity conditions and clamps
 // (boundary), and by contact forces (contact: of other bodies, rigid bodies
 // and its own distant parts), accumulated over the run. Plastic: the plastic work of J2
-// bodies (j2_plastic.hpp); fracture dissipation is zero until that model exists.
+// bodies (j2_plastic.hpp). Fracture: the elastic energy released by the
+// phase-field degradation (a dissipation, kernels/fracture/fracture_stress.hpp);
+// crack_surface: the crack surface energy of the phase field (not in the balance).
 struct BodyEnergy {
   double kinetic = 0, strain = 0, plastic = 0, fracture = 0, external_work = 0, boundary_work = 0, contact_work = 0;
   double gravity_work = 0;   // work of solver.gravity since the start (sum m g . (u - u0))
   double damping = 0;        // work taken by the Kelvin-Voigt damping (solver.damping)
   double relaxation = 0;     // kinetic energy removed by solver.relaxation
+  double crack_surface = 0;  // Gc int (1-s)^2/(4 eps0) + eps0 |grad s|^2 dV0 (fracturing bodies)
   Point3 momentum{0, 0, 0};  // kg m/s (2-D: per metre of depth)
   // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc - W_contact - W_gravity.
   double balance() const {
@@ -48,7 +58,18 @@ struct EnergySample {
   double kinetic = 0, strain = 0;
   Point3 momentum{0, 0, 0};
   double hourglass_max = 0, hourglass_mean = 0;
+  bool with_fracture = false;  // some body fractures: crack_surface columns are written
   std::vector<BodyEnergy> bodies;
+};
+
+// The crack tip of a fracturing body (kernels/fracture/crack_tip.hpp):
+// whether a particle has s < 0.5, the tip particle's current position, and the
+// crack's length = the notch's length inside the body + its growth beyond the
+// notch's tip along the crack's direction.
+struct CrackTipSample {
+  bool broken = false;
+  Point3 tip{0, 0, 0};
+  double length = 0;
 };
 
 // Force sum of one clamp or velocity condition (its reaction) or load (the
@@ -61,6 +82,7 @@ struct BoundaryForceSample {
 struct ProbeSample {
   Point3 position{}, displacement{}, velocity{};
   double von_mises = 0, jacobian = 0, von_mises_strain = 0, plastic_strain = 0;
+  double phase_field = 1;  // s (1 without fracture)
 };
 
 struct SetupReport {
@@ -99,6 +121,8 @@ class Solver {
   // rigid bodies in contact (the force each exerts on the bodies).
   virtual std::vector<BoundaryForceSample> boundary_forces() = 0;
   virtual std::vector<MeasureSample> measures() = 0;  // scene.measure_planes order
+  // Per entry of crack_bodies(scene): its crack tip now.
+  virtual std::vector<CrackTipSample> crack_tips() { return {}; }
   virtual const StageTimers& timers() const = 0;
   virtual void reset_timers() = 0;  // after warm-up steps
   virtual SetupReport setup_report() const = 0;

@@ -30,6 +30,10 @@ class BodyKernels {
   virtual void acceleration(const TlsphViews<D, Real>& v, Real dt) const = 0;
   virtual void stress_observables(const TlsphViews<D, Real>& v) const = 0;
   virtual EnergySums energy(const TlsphViews<D, Real>& v) const = 0;
+  // Phase-field fracture (tlsph_fracture_kernels.hpp); nothing for other bodies:
+  // ds/dt to t + dt, then s to t + dt.
+  virtual void phase_field_rate(const TlsphViews<D, Real>&, Real /*dt*/) const {}
+  virtual void phase_field_half_step(const TlsphViews<D, Real>&, Real /*half_dt*/) const {}
 };
 
 struct BodyKernelSettings {
@@ -46,7 +50,7 @@ struct BodyKernelSettings {
 };
 
 template <class B, int D, class Real, class Material, class Hourglass>
-class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
+class BodyKernelsImpl : public BodyKernels<B, D, Real> {
  public:
   BodyKernelsImpl(const Material& m, const BodyKernelSettings& s) : material_(m), s_(s) {}
 
@@ -105,10 +109,10 @@ class BodyKernelsImpl final : public BodyKernels<B, D, Real> {
         s_.range.begin, s_.range.end,
         EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state, v.velocity, v.displacement,
                                          v.volume, v.damping_work, Real(s_.density), g},
-        EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0}, EnergySumsPlus{});
+        EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0, 0.0, 0.0}, EnergySumsPlus{});
   }
 
- private:
+ protected:
   Material material_;
   BodyKernelSettings s_;
 };

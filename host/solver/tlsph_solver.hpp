@@ -36,7 +36,9 @@
 #include "host/solver/tlsph_body_kernels.hpp"
 #include "host/solver/tlsph_conditions.hpp"
 #include "host/solver/tlsph_contact.hpp"
+#include "host/solver/tlsph_fracture_kernels.hpp"
 #include "host/solver/tlsph_relaxation.hpp"
+#include "kernels/fracture/crack_tip.hpp"
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
 #include "kernels/tlsph/hourglass_indicator.hpp"
@@ -77,10 +79,11 @@ struct ProbeGatherFunctor {
   const Real* jacobian;
   const Real* von_mises_strain;
   const Real* plastic_strain;  // null without plastic bodies
-  Real* out;                   // per probe particle: x(D) u(D) v(D) vm J vm_strain plastic_strain
+  const Real* phase_field;     // null without fracture
+  Real* out;                   // per probe particle: x(D) u(D) v(D) vm J vm_strain plastic_strain s
   MFSD_HD void operator()(Index k) const {
     const Index i = index[k];
-    Real* o = out + k * (3 * D + 4);
+    Real* o = out + k * (3 * D + 5);
     for (int a = 0; a < D; ++a) {
       o[a] = reference_position[i].v[a] + displacement[i].v[a];
       o[D + a] = displacement[i].v[a];
@@ -90,6 +93,7 @@ struct ProbeGatherFunctor {
     o[3 * D + 1] = jacobian[i];
     o[3 * D + 2] = von_mises_strain[i];
     o[3 * D + 3] = plastic_strain ? plastic_strain[i] : Real(0);
+    o[3 * D + 4] = phase_field ? phase_field[i] : Real(1);
   }
 };
 
@@ -139,10 +143,13 @@ class TlsphSolver final : public Solver {
             probes_need_stress_ || f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain";
     bool loads = false;
     for (const auto& c : scene.conditions) loads = loads || c.type != ConditionSpec::Type::velocity;
-    for (const char* name :
-         {"stress", "force", "contact", "loads", "boundary", "relaxation", "deformation_rate", "time_step"})
+    has_fracture_ = has_fracture_body(scene);
+    cracks_ = crack_specs(scene);
+    for (const char* name : {"stress", "force", "phase_field", "contact", "loads", "boundary", "relaxation",
+                             "deformation_rate", "time_step"})
       if ((loads || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact") &&
-          (scene.solver.relaxation.enabled || std::string(name) != "relaxation"))
+          (scene.solver.relaxation.enabled || std::string(name) != "relaxation") &&
+          (has_fracture_ || std::string(name) != "phase_field"))
         timers_.id(name);
     has_loads_ = loads;
     conditions_.compile(scene_);
@@ -160,7 +167,17 @@ class TlsphSolver final : public Solver {
     }
     const bool paper_limiter =
         scene_.solver.hourglass == HourglassControl::genog && scene_.solver.genog_limiter == GenogLimiter::paper;
-    pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter);
+    std::vector<Notch<D>> notches;  // pairs they cut are left out (seed 001 section 3.3.1)
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      for (const auto& points : scene_.bodies[b].material.fracture.notches) {
+        Notch<D> cut{};
+        for (size_t k = 0; k < points.size(); ++k)
+          for (int a = 0; a < D; ++a) cut.p[k].v[a] = points[k][size_t(a)];
+        cut.body = int(b);
+        notches.push_back(cut);
+      }
+    pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter,
+                                                       notches);
     particles_.remove(field::reference_position_double);
 
     auto* B0 = particles_.template add<Mat<D, Real>>(field::correction_matrix);
@@ -261,7 +278,7 @@ class TlsphSolver final : public Solver {
     from_host<B>(measure_index, measure_index_);
     from_host<B>(measure_density, measure_density_);
     measure_buffer_.resize(measure_index.size() * 2 * D);
-    probe_buffer_.resize(probe_index.size() * (3 * D + 4));
+    probe_buffer_.resize(probe_index.size() * (3 * D + 5));
 
     // An initial displacement field deforms the body: F = I + grad u (seed 000
     // eq. 22 with u in place of v).
@@ -309,6 +326,10 @@ class TlsphSolver final : public Solver {
     run("force", [&] {
       for (auto& k : bodies_) k->acceleration(v_, Real(dt));
     });
+    if (has_fracture_) run("phase_field", [&] {
+        for (auto& k : bodies_) k->phase_field_rate(v_, Real(dt));
+        for (auto& k : bodies_) k->phase_field_half_step(v_, half_dt);
+      });
     if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt); });
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1); });
     run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1); });
@@ -366,11 +387,14 @@ class TlsphSolver final : public Solver {
     s.von_mises_strain = to_double(to_host<B>(particles_.template buffer<Real>(field::von_mises_strain)));
     if (v_.plastic_strain)
       s.plastic_strain = to_double(to_host<B>(particles_.template buffer<Real>(field::plastic_strain)));
+    if (has_fracture_)
+      s.fields.push_back({field::phase_field, to_double(to_host<B>(particles_.template buffer<Real>(field::phase_field)))});
     return s;
   }
 
   EnergySample energies() override {
     EnergySample e;
+    e.with_fracture = has_fracture_;
     for (size_t b = 0; b < bodies_.size(); ++b) {
       const EnergySums s = bodies_[b]->energy(v_);
       e.kinetic += s.kinetic;
@@ -386,6 +410,8 @@ class TlsphSolver final : public Solver {
       be.relaxation = relaxation_.dissipation(b);
       be.gravity_work = s.gravity - gravity_at_start_[b];
       be.damping = s.damping;
+      be.fracture = s.fracture;
+      be.crack_surface = s.surface;
       for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
     }
@@ -422,6 +448,30 @@ class TlsphSolver final : public Solver {
     return out;
   }
 
+  std::vector<CrackTipSample> crack_tips() override {
+    std::vector<CrackTipSample> out;
+    for (const CrackSpec& c : cracks_) {
+      CrackTipFunctor<D, Real> f{v_.reference_position, v_.phase.s, {}, {}, Real(0.5)};
+      for (int a = 0; a < D; ++a) {
+        f.origin.v[a] = Real(c.origin[size_t(a)]);
+        f.direction.v[a] = Real(c.direction[size_t(a)]);
+      }
+      const BodyRange r = ranges_[c.body];
+      const CrackTip<Real> tip = transform_reduce<B>(r.begin, r.end, f, CrackTip<Real>{Real(-1e30), r.begin},
+                                                     CrackTipMax<Real>{});
+      CrackTipSample sample;
+      sample.broken = tip.reach > Real(-1e29);
+      if (sample.broken) {
+        const Vec<D, Real> X = particles_.template buffer<Vec<D, Real>>(field::reference_position)[size_t(tip.index)];
+        const Vec<D, Real> u = particles_.template buffer<Vec<D, Real>>(field::displacement)[size_t(tip.index)];
+        for (int a = 0; a < D; ++a) sample.tip[size_t(a)] = double(X.v[a]) + double(u.v[a]);
+        sample.length = c.notch_length + std::max(0.0, double(tip.reach));
+      }
+      out.push_back(sample);
+    }
+    return out;
+  }
+
   // Each probe is the mean over its particles (one, or those within its radius).
   std::vector<ProbeSample> probes() override {
     std::vector<ProbeSample> out(probe_offsets_.size() - 1);
@@ -431,12 +481,13 @@ class TlsphSolver final : public Solver {
     parallel_for<B>(Index(probe_index_.size()),
                     ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement, v_.velocity,
                                                 v_.von_mises, v_.jacobian, v_.von_mises_strain, v_.plastic_strain,
-                                                raw(probe_buffer_)});
+                                                v_.phase.s, raw(probe_buffer_)});
     const auto h = to_host<B>(probe_buffer_);
     for (size_t k = 0; k < out.size(); ++k) {
       const double w = 1.0 / double(probe_offsets_[k + 1] - probe_offsets_[k]);
+      out[k].phase_field = 0;
       for (size_t m = probe_offsets_[k]; m < probe_offsets_[k + 1]; ++m) {
-        const Real* o = h.data() + m * (3 * D + 4);
+        const Real* o = h.data() + m * (3 * D + 5);
         for (int a = 0; a < D; ++a) {
           out[k].position[a] += w * double(o[a]);
           out[k].displacement[a] += w * double(o[D + a]);
@@ -446,6 +497,7 @@ class TlsphSolver final : public Solver {
         out[k].jacobian += w * double(o[3 * D + 1]);
         out[k].von_mises_strain += w * double(o[3 * D + 2]);
         out[k].plastic_strain += w * double(o[3 * D + 3]);
+        out[k].phase_field += w * double(o[3 * D + 4]);
       }
     }
     return out;
@@ -502,6 +554,19 @@ class TlsphSolver final : public Solver {
     }
     particles_.template add<Real>(field::volume);
     from_host<B>(volume, particles_.template buffer<Real>(field::volume));
+    if (has_fracture_) {  // s = 1 (intact), the rest zero; every particle (bodies are ranges of one set)
+      particles_.template add<Real>(field::phase_field);
+      from_host<B>(std::vector<Real>(n, Real(1)), particles_.template buffer<Real>(field::phase_field));
+      for (const char* name :
+           {field::phase_field_rate, field::fracture_history, field::tensile_energy, field::fracture_released,
+            field::phase_field_next})
+        particles_.template add<Real>(name);
+      if (!init_.phase_field_lower.empty()) {
+        particles_.template add<Real>(field::phase_field_lower);
+        from_host<B>(std::vector<Real>(init_.phase_field_lower.begin(), init_.phase_field_lower.end()),
+                     particles_.template buffer<Real>(field::phase_field_lower));
+      }
+    }
   }
 
   void bind_views() {
@@ -535,6 +600,10 @@ class TlsphSolver final : public Solver {
         particles_.has(field::plastic_state) ? particles_.template get<J2State<Real>>(field::plastic_state) : nullptr;
     v_.plastic_strain = opt_real(field::plastic_strain);
     v_.damping_work = opt_real(field::damping_work);
+    v_.phase = PhaseFieldViews<Real>{opt_real(field::phase_field),      opt_real(field::phase_field_rate),
+                                     opt_real(field::fracture_history), opt_real(field::tensile_energy),
+                                     opt_real(field::fracture_released), opt_real(field::phase_field_lower),
+                                     opt_real(field::phase_field_next)};
   }
 
   std::unique_ptr<BodyKernels<B, D, Real>> make_body_kernels(size_t b) {
@@ -577,6 +646,16 @@ class TlsphSolver final : public Solver {
           J2Plastic<D, Real, LinearHardening<Real>>{
               Real(p.K), Real(p.G), {Real(m.yield_stress), Real(m.hardening_modulus)}},
           k);
+    }
+    if (m.fracture.enabled) {  // hourglass "none" (scene_reader refuses the others)
+      const double speed = m.fracture.speed > 0 ? m.fracture.speed : std::sqrt((p.K + 4.0 * p.G / 3.0) / m.density);
+      const FractureParameters<Real> f{Real(m.fracture.energy_release_rate), Real(m.fracture.length_scale),
+                                       Real(speed), Real(m.fracture.phase_field_limit)};
+      if (m.model == MaterialModel::neo_hookean)
+        return std::make_unique<FractureBodyKernels<B, D, Real, NeoHookean<D, Real>>>(
+            NeoHookean<D, Real>{Real(p.K), Real(p.G)}, k, f);
+      return std::make_unique<FractureBodyKernels<B, D, Real, SaintVenantKirchhoff<D, Real>>>(
+          SaintVenantKirchhoff<D, Real>{Real(p.K), Real(p.G), Real(p.lambda)}, k, f);
     }
     if (m.model == MaterialModel::neo_hookean) return make_variant(NeoHookean<D, Real>{Real(p.K), Real(p.G)}, k);
     return make_variant(SaintVenantKirchhoff<D, Real>{Real(p.K), Real(p.G), Real(p.lambda)}, k);
@@ -630,12 +709,21 @@ class TlsphSolver final : public Solver {
     const double stretch = std::max(1.0, double(s.max_inverse_stretch));
     double dt = std::numeric_limits<double>::infinity();
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
-      dt = std::min(dt, props(b).h / (props(b).c0 * stretch + vmax));
+      dt = std::min(dt, props(b).h / (wave_speed(b) * stretch + vmax));
       if (amax > 0) dt = std::min(dt, std::sqrt(props(b).h / amax));
     }
     // Contact springs and dashpots (kernels/contact/contact_force.hpp).
     if (contact_.inverse_stable_step() > 0) dt = std::min(dt, 1.0 / contact_.inverse_stable_step());
     dt_next_ = scene_.solver.cfl * dt;
+  }
+
+  // The fastest wave of a body: c0, or the phase field's speed limit where it is larger.
+  double wave_speed(size_t b) {
+    const FractureSpec& f = scene_.bodies[b].material.fracture;
+    if (!f.enabled) return props(b).c0;
+    const double c = f.speed > 0 ? f.speed
+                                 : std::sqrt((props(b).K + 4.0 * props(b).G / 3.0) / scene_.bodies[b].material.density);
+    return std::max(props(b).c0, c);
   }
 
   [[noreturn]] void fail(Index i) {
@@ -700,6 +788,8 @@ class TlsphSolver final : public Solver {
   TlsphRelaxation<B, D, Real> relaxation_;
   std::vector<double> gravity_at_start_;  // per body: sum m g . u0
   bool has_loads_ = false;
+  bool has_fracture_ = false;
+  std::vector<CrackSpec> cracks_;  // crack-tip outputs
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};
   bool probes_need_stress_ = false;  // von_mises or J requested by a probe

@@ -2,6 +2,7 @@
 // after set-up (buffers never move afterwards) and handed to the functors.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/fracture/phase_field.hpp"
 #include "kernels/materials/j2_plastic.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
@@ -31,6 +32,7 @@ struct TlsphViews {
   Real* von_mises_strain;
   Real* plastic_strain;  // when some body is plastic, else null
   Real* damping_work;    // with Kelvin-Voigt damping (factor > 0), else null
+  PhaseFieldViews<Real> phase;  // when some body has fracture, else all null
 };
 
 }  // namespace mfsd

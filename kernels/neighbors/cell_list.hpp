@@ -5,6 +5,7 @@
 // contact, not through the reference list).
 #pragma once
 #include "kernels/core/vec.hpp"
+#include "kernels/fracture/notch.hpp"
 
 namespace mfsd {
 
@@ -55,8 +56,9 @@ struct CellRangeFunctor {
   }
 };
 
-// Visits every j != i of the same body with |X_i - X_j| < radius; the
-// visitor receives (j, X_i - X_j, |X_i - X_j|).
+// Visits every j != i of the same body with |X_i - X_j| < radius whose pair
+// no notch cuts (kernels/fracture/notch.hpp); the visitor receives
+// (j, X_i - X_j, |X_i - X_j|).
 template <int D>
 struct CellNeighborhood {
   CellGrid<D> grid;
@@ -66,6 +68,7 @@ struct CellNeighborhood {
   const Index* end;
   const Index* order;  // cell-sorted position -> particle index; null = identity (reordered set)
   double radius2;
+  NotchSet<D> notches;  // pair mask; empty without notches
 
   template <class Visitor>
   MFSD_HD void for_each(Index i, Visitor& visit) const {
@@ -96,7 +99,7 @@ struct CellNeighborhood {
       if (j == i) continue;
       const Vec<D, double> d = xi - position[j];
       const double r2 = squared_norm(d);
-      if (r2 < radius2) visit(j, d, math::sqrt(r2));
+      if (r2 < radius2 && !(notches.count && notches.cuts(body[i], xi, position[j]))) visit(j, d, math::sqrt(r2));
     }
   }
 };

@@ -82,6 +82,8 @@ struct EnergySums {
   double momentum[3];
   double gravity;  // sum m g . u: the work of a uniform gravity since u = 0 (a state function)
   double damping;  // work taken by the Kelvin-Voigt damping
+  double fracture = 0.0;  // elastic energy released by phase-field degradation (fracture_stress.hpp)
+  double surface = 0.0;   // crack surface energy Gc int (1-s)^2/(4 eps0) + eps0 |grad s|^2
 };
 
 struct EnergySumsPlus {
@@ -91,7 +93,9 @@ struct EnergySumsPlus {
                       a.plastic + b.plastic,
                       {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]},
                       a.gravity + b.gravity,
-                      a.damping + b.damping};
+                      a.damping + b.damping,
+                      a.fracture + b.fracture,
+                      a.surface + b.surface};
   }
 };
 
@@ -121,7 +125,9 @@ struct EnergyFunctor {
                  plastic,
                  {0.0, 0.0, 0.0},
                  0.0,
-                 damping_work ? V0 * double(damping_work[i]) : 0.0};
+                 damping_work ? V0 * double(damping_work[i]) : 0.0,
+                 0.0,
+                 0.0};
     for (int a = 0; a < D; ++a) {
       s.momentum[a] = m * double(v.v[a]);
       s.gravity += m * double(gravity.v[a]) * double(displacement[i].v[a]);

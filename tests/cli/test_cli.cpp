@@ -218,6 +218,54 @@ TEST_F(Cli, BadPlasticMaterials) {
                      "\"j2_mandel\" with solver.hourglass \"laplacian\"");
 }
 
+TEST_F(Cli, BadFracture) {
+  const std::string nh = R"("model": "neo_hookean", "density": 1000)";
+  auto with = [&](const std::string& fracture, const std::string& model = "neo_hookean") {
+    return scene(nh, R"("model": ")" + model + R"(", "yield_stress": 2e4, "density": 1000, "fracture": )" + fracture);
+  };
+  auto fr = [&](const std::string& fracture) {
+    return scene(nh, R"("model": "neo_hookean", "density": 1000, "fracture": )" + fracture);
+  };
+  const std::string none = " --set solver.hourglass=none -o ";
+  expect_input_error("run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01})") + " -o " + out(),
+                     "/solver/hourglass: got \"genog\" with fracture in body \"block\"; expected \"none\"");
+  expect_input_error("run " + with(R"({"energy_release_rate": 3, "length_scale": 0.01})", "j2") + none + out(),
+                     "/bodies/0/material/fracture: got fracture with the \"j2\" model; expected an elastic model");
+  expect_input_error("run " + fr(R"({"energy_release_rate": 0, "length_scale": 0.01})") + none + out(),
+                     "/bodies/0/material/fracture/energy_release_rate: got 0; expected a positive number");
+  expect_input_error("run " + fr(R"({"energy_release_rate": 3, "length_scale": -1})") + none + out(),
+                     "/bodies/0/material/fracture/length_scale: got -1; expected a positive number");
+  expect_input_error("run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.002})") + none + out(),
+                     "/bodies/0/material/fracture/length_scale: got 0.002; expected a length scale of at least a "
+                     "quarter of the body's spacing (0.0025)");
+  expect_input_error(
+      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "phase_field_limit": 1})") + none + out(),
+      "/bodies/0/material/fracture/phase_field_limit: got 1; expected a number in [0, 1)");
+  expect_input_error(
+      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[0.05, 0.02], [0.05, 0.02]]}]})") +
+          none + out(),
+      "/bodies/0/material/fracture/notches/0/points: got a notch of zero length");
+  expect_input_error(
+      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[1, 1], [2, 1]]}]})") + none +
+          out(),
+      "/bodies/0/material/fracture/notches/0/points: got a notch outside body 'block'");
+  expect_input_error(
+      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[0, 0.025]]}]})") + none +
+          out(),
+      "/bodies/0/material/fracture/notches/0/points: got 1 points; expected the 2 ends of a segment");
+  expect_input_error(
+      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "restrict_phase_field": [{"where": "x0 <", "minimum": 0.9}]})") +
+          none + out(),
+      "/bodies/0/material/fracture/restrict_phase_field/0/where");
+  // eps0 below the spacing is accepted with a warning.
+  const Result r = run("check " + fr(R"({"energy_release_rate": 3, "length_scale": 0.005})") +
+                       " --set solver.hourglass=none");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: /bodies/0/material/fracture/length_scale: 0.005 is smaller than the spacing"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST_F(Cli, BadContact) {
   const std::string probes = R"("probes":)";
   auto with = [&](const std::string& contact) { return scene(probes, "\"contact\": " + contact + ", " + probes); };

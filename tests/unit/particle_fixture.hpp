@@ -35,7 +35,7 @@ struct Fixture {
 
   // All particles in body 0 unless `body` is given; uniform volume dp^D.
   Fixture(const std::vector<Vec<D, double>>& x, double dp, double h, bool reorder, std::vector<int> body = {},
-          bool beta = false)
+          bool beta = false, const std::vector<Notch<D>>& notches = {})
       : particles(Index(x.size())) {
     const size_t n = x.size();
     if (body.empty()) body.assign(n, 0);
@@ -66,7 +66,7 @@ struct Fixture {
         if (body[i] == b) lo = std::min(lo, Index(i)), hi = std::max(hi, Index(i + 1));
       search.push_back(BodySearch{BodyRange{lo, hi}, h});
     }
-    pairs = build_reference_neighbor_list<Cpu, D, Real>(particles, search, reorder, beta);
+    pairs = build_reference_neighbor_list<Cpu, D, Real>(particles, search, reorder, beta, notches);
   }
 
   template <class T>
