@@ -83,6 +83,16 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
       << to_string(body.material.model) << ", rho0 " << body.material.density << ", E " << body.material.youngs_modulus
       << ", nu " << body.material.poisson_ratio << ", dp " << body.spacing << ", h " << p.h << ", c0 " << p.c0
       << " m/s, max initial speed " << vmax << " m/s\n";
+    const FractureSpec& f = body.material.fracture;
+    if (f.enabled) {
+      long bounded = 0;
+      for (long i = P.body_range[b].begin; i < P.body_range[b].end; ++i)
+        bounded += !P.phase_field_lower.empty() && P.phase_field_lower[size_t(i)] > 0;
+      const double c = f.speed > 0 ? f.speed : std::sqrt((p.K + 4.0 * p.G / 3.0) / body.material.density);
+      o << "    fracture: Gc " << f.energy_release_rate << " J/m^2, eps0 " << f.length_scale << " m (" << f.length_scale / body.spacing
+        << " dp), s_l " << f.phase_field_limit << ", phase-field speed " << c << " m/s, " << f.notches.size()
+        << " notch(es), " << bounded << " particle(s) with a restricted phase field\n";
+    }
   }
   for (size_t c = 0; c < s.clamps.size(); ++c)
     o << "  clamp '" << s.clamps[c].name << "' on body '" << s.clamps[c].body << "': " << P.clamp_particles[c].size()

@@ -252,7 +252,7 @@ TEST_F(Cli, BadFracture) {
   expect_input_error(
       "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[0, 0.025]]}]})") + none +
           out(),
-      "/bodies/0/material/fracture/notches/0/points: got 1 points; expected the 2 ends of a segment");
+      "/bodies/0/material/fracture/notches/0/points: got an array of 1; expected at least 2 element(s)");
   expect_input_error(
       "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "restrict_phase_field": [{"where": "x0 <", "minimum": 0.9}]})") +
           none + out(),

@@ -56,6 +56,7 @@ void compare(const std::string& config, const std::vector<std::string>& sets, Pr
       EXPECT_NEAR(cpu[k].displacement[a], gpu[k].displacement[a], tol * (1e-3 + std::abs(cpu[k].displacement[a])));
       EXPECT_NEAR(cpu[k].velocity[a], gpu[k].velocity[a], tol * (1e-3 + std::abs(cpu[k].velocity[a])));
     }
+  for (size_t k = 0; k < cpu.size(); ++k) EXPECT_NEAR(cpu[k].phase_field, gpu[k].phase_field, tol);
 }
 
 }  // namespace
@@ -113,4 +114,13 @@ TEST(CrossBackend, RelaxationDouble) {
           Precision::double_precision, 1e-7);
   compare("twisting_column_3d.json", {"constants.H_over_dp=4", "solver.relaxation={\"viscosity\": 100}"},
           Precision::double_precision, 1e-9);
+}
+
+TEST(CrossBackend, FractureDouble) {
+  // Phase-field fracture on the device: the split stress, the exact phase-field
+  // update, the notch mask and the crack-tip reduction; the crack-branching
+  // plate at dp = 0.5 mm (eps0 = dp/4, the coarsest allowed), 300 steps (27 us:
+  // the crack starts at 22 us).
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("crack_branching_2d.json", {"constants.dp=0.5e-3"}, Precision::double_precision, 1e-7);
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "kernels/fracture/fracture_stress.hpp"
@@ -118,8 +119,9 @@ TEST(PhaseField, SteadyProfileMatchesTheExponential) {
     const double exact = 1.0 - std::exp(-d / (2 * eps0));
     worst = std::max(worst, std::fabs(st.s[i] - exact));
   }
-  // Measured: 0.02 (SPH Laplacian with h = 1.15 dp, eps0 = 1.5 dp).
-  EXPECT_LT(worst, 0.03);
+  std::printf("largest |s - exact| on the middle row: %.4f\n", worst);
+  // Measured: 0.0065 (SPH Laplacian with h = 1.15 dp, eps0 = 1.5 dp).
+  EXPECT_LT(worst, 0.01);
   EXPECT_LT(*std::min_element(st.s.begin(), st.s.end()), 0.01);
 }
 
