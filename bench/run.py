@@ -10,6 +10,8 @@
               stages achieve, as a fraction of it, and the compute roof of one core
   scenes      the seed 001 scenes at the seeds' resolutions: speed, memory, and how
               long their full runs would take
+  fracture    the cost of phase-field fracture: the four-point-bending beam with
+              SVK, NH, fracture-SVK, fracture-NH and J2 (seed 001 section 4.4)
   all         every suite
 Results: bench/results/<suite>-<date>.json, .md and .png."""
 import argparse
@@ -20,7 +22,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "suites"))
 import bench_lib as b  # noqa: E402
 
-SUITES = ["throughput", "scaling", "accuracy", "roofline", "scenes"]
+SUITES = ["throughput", "scaling", "accuracy", "roofline", "scenes", "fracture"]
 
 
 def main():

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Benchmarks: builds Release (with the triad and the Google Benchmark
 # microbenchmarks), then runs a suite of bench/run.py.
-#   scripts/bench.sh [throughput|scaling|accuracy|roofline|scenes|micro|all] [--quick] [--backend cuda] [--repeats N]
+#   scripts/bench.sh [throughput|scaling|accuracy|roofline|scenes|fracture|micro|all] [--quick] [--backend cuda] [--repeats N]
 # Results go to bench/results/<suite>-<date>.{json,md,png} (micro: .json).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"

@@ -50,12 +50,9 @@ Snapshot rigid_body_snapshot(const Scene& scene, const std::vector<RigidBodyMoti
         s.displacement.push_back(x[a] - x0[a]);
         s.velocity.push_back((xp[a] - xm[a]) / span);
       }
-      s.von_mises.push_back(0);
-      s.jacobian.push_back(1);
-      s.hourglass.push_back(0);
-      s.von_mises_strain.push_back(0);
-      if (!s.plastic_strain.empty()) s.plastic_strain.push_back(0);
     }
+  for (const char* name : {"von_mises", "J", "hourglass", "von_mises_strain"})  // as on the bodies' particles
+    s.fields.push_back({name, std::vector<double>(s.n, std::string(name) == "J" ? 1.0 : 0.0)});
   return s;
 }
 

@@ -49,11 +49,6 @@ void write_vtu(const std::string& path, const Snapshot& s, bool single) {
   a.array("constrained", "UInt8", 1, constrained);
   a.real("displacement", 3, s.displacement, single);
   a.real("velocity", 3, s.velocity, single);
-  a.real("von_mises", 1, s.von_mises, single);
-  a.real("J", 1, s.jacobian, single);
-  a.real("hourglass", 1, s.hourglass, single);
-  a.real("von_mises_strain", 1, s.von_mises_strain, single);
-  if (!s.plastic_strain.empty()) a.real("plastic_strain", 1, s.plastic_strain, single);
   for (const auto& f : s.fields) a.real(f.name.c_str(), 1, f.values, single);
   const std::string point_xml = a.xml;
   a.xml.clear();

@@ -14,23 +14,28 @@
 namespace mfsd {
 
 // Host copies of the particle fields, in double, 3 components per vector
-// (z = 0 in 2-D), in the solver's current particle order.
+// (z = 0 in 2-D), in the solver's current particle order: the kinematics,
+// then the per-particle scalars a solver or model registers by name (von_mises,
+// J, hourglass, von_mises_strain, plastic_strain with a J2 body, phase_field
+// with a fracturing body, ...); every writer writes each under its name, so a
+// new output field is one registration in the solver.
 struct Snapshot {
   size_t n = 0;
   std::vector<long> id;
   std::vector<int> body;
   std::vector<unsigned char> constrained;
   std::vector<double> position, displacement, velocity;  // 3 n
-  std::vector<double> von_mises, jacobian, hourglass;    // n
-  std::vector<double> von_mises_strain;                  // n
-  std::vector<double> plastic_strain;                    // n when some body is plastic, else empty
-  // Further per-particle scalars that a solver or model registers by name
-  // (e.g. phase_field); every writer writes each of them under its name.
   struct Field {
     std::string name;
     std::vector<double> values;  // n
   };
   std::vector<Field> fields;
+  // The named field, or null.
+  const std::vector<double>* field(const std::string& name) const {
+    for (const auto& f : fields)
+      if (f.name == name) return &f.values;
+    return nullptr;
+  }
 };
 
 // Energies of one body (J; per metre of depth in 2-D). Work done on the body

@@ -25,6 +25,7 @@
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "host/neighbors/reference_neighbor_list.hpp"
@@ -209,6 +210,13 @@ class TlsphSolver final : public Solver {
     }
     if (scene_.solver.damping_factor > 0) particles_.template add<Real>(field::damping_work);  // zero
     bind_views();
+    // Snapshot fields: (output name, particle field), written by every writer under the name.
+    snapshot_fields_ = {{"von_mises", field::von_mises},
+                        {"J", field::jacobian},
+                        {"hourglass", field::hourglass_indicator},
+                        {"von_mises_strain", field::von_mises_strain}};
+    if (v_.plastic_strain) snapshot_fields_.emplace_back("plastic_strain", field::plastic_strain);
+    if (has_fracture_) snapshot_fields_.emplace_back("phase_field", field::phase_field);
     parallel_for<B>(n, IdentityFunctor<D, Real>{v_.deformation_gradient});
     if (v_.plastic_state) parallel_for<B>(n, InitialPlasticStateFunctor<Real>{v_.plastic_state});
 
@@ -380,15 +388,10 @@ class TlsphSolver final : public Solver {
         s.displacement[3 * i + a] = double(u[i].v[a]);
         s.velocity[3 * i + a] = double(v[i].v[a]);
       }
-    auto to_double = [](const std::vector<Real>& r) { return std::vector<double>(r.begin(), r.end()); };
-    s.von_mises = to_double(to_host<B>(particles_.template buffer<Real>(field::von_mises)));
-    s.jacobian = to_double(to_host<B>(particles_.template buffer<Real>(field::jacobian)));
-    s.hourglass = to_double(to_host<B>(particles_.template buffer<Real>(field::hourglass_indicator)));
-    s.von_mises_strain = to_double(to_host<B>(particles_.template buffer<Real>(field::von_mises_strain)));
-    if (v_.plastic_strain)
-      s.plastic_strain = to_double(to_host<B>(particles_.template buffer<Real>(field::plastic_strain)));
-    if (has_fracture_)
-      s.fields.push_back({field::phase_field, to_double(to_host<B>(particles_.template buffer<Real>(field::phase_field)))});
+    for (const auto& [name, source] : snapshot_fields_) {
+      const auto values = to_host<B>(particles_.template buffer<Real>(source));
+      s.fields.push_back({name, std::vector<double>(values.begin(), values.end())});
+    }
     return s;
   }
 
@@ -790,6 +793,7 @@ class TlsphSolver final : public Solver {
   bool has_loads_ = false;
   bool has_fracture_ = false;
   std::vector<CrackSpec> cracks_;  // crack-tip outputs
+  std::vector<std::pair<std::string, const char*>> snapshot_fields_;  // output name, particle field
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};
   bool probes_need_stress_ = false;  // von_mises or J requested by a probe

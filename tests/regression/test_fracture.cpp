@@ -12,16 +12,6 @@
 
 using namespace mfsd;
 
-namespace {
-
-const std::vector<double>* field(const Snapshot& s, const std::string& name) {
-  for (const auto& f : s.fields)
-    if (f.name == name) return &f.values;
-  return nullptr;
-}
-
-}  // namespace
-
 TEST(Fracture, CrackBranchingInitiatesRunsAndBranches) {
   const SceneDocument doc = test::load_config("crack_branching_2d.json", {"constants.dp=0.5e-3"});
   const InitialParticles particles = generate_particles(doc.scene);
@@ -65,7 +55,7 @@ TEST(Fracture, CrackBranchingInitiatesRunsAndBranches) {
 
   // Branches: broken particles (s < 0.5) beyond x = 70 mm on both sides of the line.
   const Snapshot s = solver->snapshot();
-  const auto* phase = field(s, "phase_field");
+  const auto* phase = s.field("phase_field");
   ASSERT_NE(phase, nullptr);
   int above = 0, below = 0, on_line_far = 0;
   for (size_t i = 0; i < s.n; ++i) {
@@ -102,7 +92,7 @@ TEST(Fracture, NotchedBarOpensAtItsNotch) {
     solver->step();
     if (solver->steps() % 10 != 0) continue;
     const Snapshot s = solver->snapshot();
-    const auto* phase = field(s, "phase_field");
+    const auto* phase = s.field("phase_field");
     ASSERT_NE(phase, nullptr);
     int broken = 0, elsewhere = 0;
     double reach = 0;
