@@ -257,6 +257,24 @@ TEST_F(Cli, BadFracture) {
       "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "restrict_phase_field": [{"where": "x0 <", "minimum": 0.9}]})") +
           none + out(),
       "/bodies/0/material/fracture/restrict_phase_field/0/where");
+  // 3-D notches: a quadrilateral that is degenerate, off its plane or not convex.
+  const std::string cube = R"({"name": "cube", "dimension": 3, "solver": {"hourglass": "none", "end_time": 1e-6},
+    "bodies": [{"name": "cube", "spacing": 0.01, "geometry": {"box": {"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}},
+      "material": {"model": "saint_venant_kirchhoff", "density": 1000, "youngs_modulus": 1e6, "poisson_ratio": 0.3,
+        "fracture": {"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": QUAD}]}}}]})";
+  auto quad = [&](const std::string& points) {
+    std::string text = cube;
+    text.replace(text.find("QUAD"), 4, points);
+    const fs::path f = dir_ / "cube.json";
+    std::ofstream(f) << text;
+    return f.string();
+  };
+  expect_input_error("run " + quad("[[0, 0, 0.05], [0.05, 0, 0.05], [0.1, 0, 0.05], [0.15, 0, 0.05]]") + " -o " + out(),
+                     "/bodies/0/material/fracture/notches/0/points: got a degenerate quadrilateral (zero area)");
+  expect_input_error("run " + quad("[[0, 0, 0.05], [0.1, 0, 0.05], [0.1, 0.1, 0.06], [0, 0.1, 0.05]]") + " -o " + out(),
+                     "off the plane of the others; expected 4 corners of a planar quadrilateral");
+  expect_input_error("run " + quad("[[0, 0, 0.05], [0.1, 0, 0.05], [0.02, 0.02, 0.05], [0, 0.1, 0.05]]") + " -o " + out(),
+                     "/bodies/0/material/fracture/notches/0/points: got a quadrilateral that is not convex");
   // eps0 below the spacing is accepted with a warning.
   const Result r = run("check " + fr(R"({"energy_release_rate": 3, "length_scale": 0.005})") +
                        " --set solver.hourglass=none");
