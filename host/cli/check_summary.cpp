@@ -89,9 +89,9 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
       for (long i = P.body_range[b].begin; i < P.body_range[b].end; ++i)
         bounded += !P.phase_field_lower.empty() && P.phase_field_lower[size_t(i)] > 0;
       const double c = f.speed > 0 ? f.speed : std::sqrt((p.K + 4.0 * p.G / 3.0) / body.material.density);
-      o << "    fracture: Gc " << f.energy_release_rate << " J/m^2, eps0 " << f.length_scale << " m (" << f.length_scale / body.spacing
-        << " dp), s_l " << f.phase_field_limit << ", phase-field speed " << c << " m/s, " << f.notches.size()
-        << " notch(es), " << bounded << " particle(s) with a restricted phase field\n";
+      o << "    fracture: Gc " << f.energy_release_rate << " J/m^2, eps0 " << f.length_scale << " m ("
+        << f.length_scale / body.spacing << " dp), s_l " << f.phase_field_limit << ", phase-field speed " << c
+        << " m/s, " << f.notches.size() << " notch(es), " << bounded << " particle(s) with a restricted phase field\n";
     }
   }
   for (size_t c = 0; c < s.clamps.size(); ++c)

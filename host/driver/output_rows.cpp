@@ -39,18 +39,17 @@ std::vector<double> probe_row(const Scene& scene, double time, const std::vector
 }
 
 namespace {
-const char* kBodyEnergyColumns[] = {"kinetic",       "strain",       "plastic",      "fracture", "external_work",
-                                    "boundary_work", "contact_work", "gravity_work", "damping",  "relaxation",
-                                    "balance"};
+const char* kBodyEnergyColumns[] = {"kinetic",       "strain",        "plastic",      "fracture",
+                                    "external_work", "boundary_work", "contact_work", "gravity_work",
+                                    "damping",       "relaxation",    "balance"};
 }
 
 // Totals first (the columns earlier versions wrote keep their places), then
 // per body <name>.<quantity>.
 std::vector<std::string> energy_columns(const Scene& scene) {
-  std::vector<std::string> cols{"time",          "kinetic",        "strain",        "total",
-                                "hourglass_max", "hourglass_mean", "external_work", "boundary_work",
-                                "plastic",       "fracture",       "contact_work",  "gravity_work",
-                                "damping",       "relaxation",     "balance"};
+  std::vector<std::string> cols{"time",           "kinetic",       "strain",        "total",      "hourglass_max",
+                                "hourglass_mean", "external_work", "boundary_work", "plastic",    "fracture",
+                                "contact_work",   "gravity_work",  "damping",       "relaxation", "balance"};
   const char* axes[3] = {"x", "y", "z"};
   for (int a = 0; a < scene.dimension; ++a) cols.push_back(std::string("momentum.") + axes[a]);
   for (auto& b : scene.bodies) {

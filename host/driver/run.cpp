@@ -63,7 +63,8 @@ void remove_previous_outputs(const std::string& dir) {
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
   for (auto& e : fs::directory_iterator(dir))
-    if ((e.path().filename().string().rfind("measure_", 0) == 0 || e.path().filename().string().rfind("crack_", 0) == 0) &&
+    if ((e.path().filename().string().rfind("measure_", 0) == 0 ||
+         e.path().filename().string().rfind("crack_", 0) == 0) &&
         e.path().extension() == ".csv")
       fs::remove(e.path());
 }

@@ -27,10 +27,10 @@ inline constexpr const char* plastic_state = "plastic_state";    // plastic bodi
 inline constexpr const char* plastic_strain = "plastic_strain";  // output copy of alpha
 inline constexpr const char* damping_work = "damping_work";      // Kelvin-Voigt work per reference volume
 // Phase-field fracture (fracturing bodies; kernels/fracture/phase_field.hpp).
-inline constexpr const char* phase_field = "phase_field";            // s
-inline constexpr const char* phase_field_rate = "phase_field_rate";  // ds/dt
-inline constexpr const char* fracture_history = "fracture_history";  // H = max psi_plus
-inline constexpr const char* tensile_energy = "tensile_energy";      // psi_plus at the half step
+inline constexpr const char* phase_field = "phase_field";              // s
+inline constexpr const char* phase_field_rate = "phase_field_rate";    // ds/dt
+inline constexpr const char* fracture_history = "fracture_history";    // H = max psi_plus
+inline constexpr const char* tensile_energy = "tensile_energy";        // psi_plus at the half step
 inline constexpr const char* fracture_released = "fracture_released";  // released energy per V0
 inline constexpr const char* phase_field_lower = "phase_field_lower";  // restrict_phase_field bound
 inline constexpr const char* phase_field_next = "phase_field_next";    // s_{n+1} within a step

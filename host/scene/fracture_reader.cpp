@@ -75,15 +75,13 @@ FractureSpec read_fracture(JsonNode f, const MaterialSpec& material, double spac
     warnings.push_back(f.key_path("length_scale") + ": " + number_text(spec.length_scale) +
                        " is smaller than the spacing " + number_text(spacing) +
                        "; the crack band is under-resolved (seed 001: eps0 >= dx)");
-  spec.phase_field_limit =
-      f.number("phase_field_limit", 0.1, Range{0.0, 1.0, false, true, "a number in [0, 1)"});
+  spec.phase_field_limit = f.number("phase_field_limit", 0.1, Range{0.0, 1.0, false, true, "a number in [0, 1)"});
   spec.speed = f.number("speed", 0.0, Range::non_negative());
   auto notches = f.array("notches", false);
   for (size_t k = 0; k < notches.size(); ++k) {
     JsonNode n = f.element("notches", k, *notches[k]);
-    const auto points =
-        read_points(n, "points", dim == 3 ? 4 : 2, dim,
-                    dim == 3 ? "4 corners of a planar quadrilateral" : "the 2 ends of a segment");
+    const auto points = read_points(n, "points", dim == 3 ? 4 : 2, dim,
+                                    dim == 3 ? "4 corners of a planar quadrilateral" : "the 2 ends of a segment");
     check_notch(points, dim, spacing, n.key_path("points"));
     n.finish();
     spec.notches.push_back(points);

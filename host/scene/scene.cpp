@@ -26,8 +26,8 @@ std::vector<CrackSpec> crack_specs(const Scene& scene) {
     CrackSpec c{b, {0, 0, 0}, f.crack_direction, 0.0};
     if (c.direction == Point3{0, 0, 0} && dim == 2 && !f.notches.empty())
       for (int a = 0; a < 2; ++a) c.direction[size_t(a)] = f.notches[0][1][size_t(a)] - f.notches[0][0][size_t(a)];
-    const double norm = std::sqrt(c.direction[0] * c.direction[0] + c.direction[1] * c.direction[1] +
-                                  c.direction[2] * c.direction[2]);
+    const double norm =
+        std::sqrt(c.direction[0] * c.direction[0] + c.direction[1] * c.direction[1] + c.direction[2] * c.direction[2]);
     if (norm == 0) continue;
     for (auto& x : c.direction) x /= norm;
     if (!f.notches.empty()) {

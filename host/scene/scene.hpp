@@ -27,10 +27,10 @@ struct PhaseFieldRestriction {
 };
 struct FractureSpec {
   bool enabled = false;
-  double energy_release_rate = 0;  // Gc [J/m^2]
-  double length_scale = 0;         // eps0 [m]
-  double phase_field_limit = 0.1;  // s_l (seed 001 eq. 63)
-  double speed = 0;                // c of eq. 61 [m/s]; 0 = the P-wave speed sqrt((K + 4G/3)/rho0)
+  double energy_release_rate = 0;            // Gc [J/m^2]
+  double length_scale = 0;                   // eps0 [m]
+  double phase_field_limit = 0.1;            // s_l (seed 001 eq. 63)
+  double speed = 0;                          // c of eq. 61 [m/s]; 0 = the P-wave speed sqrt((K + 4G/3)/rho0)
   std::vector<std::vector<Point3>> notches;  // 2 ends (2-D) or 4 corners (3-D), reference configuration
   std::vector<PhaseFieldRestriction> restrictions;
   Point3 crack_direction{0, 0, 0};  // of the crack-tip output; zero = along the first notch (2-D)

@@ -265,11 +265,11 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"), body.spacing, dim, scene.warnings);
     if (body.material.fracture.enabled && scene.solver.hourglass != HourglassControl::none)
-      throw SceneError("/solver/hourglass",
-                       std::string("\"") + to_string(scene.solver.hourglass) + "\" with fracture in body \"" +
-                           body.name + "\"",
-                       "\"none\": the degraded stress of phase-field fracture is implemented in the standard "
-                       "TLSPH form (seed 001), not in the hourglass-controlled splits");
+      throw SceneError(
+          "/solver/hourglass",
+          std::string("\"") + to_string(scene.solver.hourglass) + "\" with fracture in body \"" + body.name + "\"",
+          "\"none\": the degraded stress of phase-field fracture is implemented in the standard "
+          "TLSPH form (seed 001), not in the hourglass-controlled splits");
     if (body.material.plastic() && scene.solver.hourglass == HourglassControl::laplacian)
       throw SceneError(node.key_path("material") + "/model",
                        std::string("\"") + to_string(body.material.model) + "\" with solver.hourglass \"laplacian\"",
@@ -328,7 +328,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     for (int a = 0; a < dim; ++a) probe.point[a] = x[a];
     probe.radius = node.number("radius", 0.0, Range::non_negative());
     auto fields = node.array("fields", false);
-    const std::set<std::string> allowed = {"position", "displacement",     "velocity",      "von_mises",
+    const std::set<std::string> allowed = {"position", "displacement",     "velocity",       "von_mises",
                                            "J",        "von_mises_strain", "plastic_strain", "phase_field"};
     for (size_t k = 0; k < fields.size(); ++k) {
       const Json& f = *fields[k];

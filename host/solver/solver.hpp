@@ -54,8 +54,8 @@ struct BodyEnergy {
   Point3 momentum{0, 0, 0};  // kg m/s (2-D: per metre of depth)
   // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc - W_contact - W_gravity.
   double balance() const {
-    return kinetic + strain + plastic + fracture + damping + relaxation - external_work - boundary_work -
-           contact_work - gravity_work;
+    return kinetic + strain + plastic + fracture + damping + relaxation - external_work - boundary_work - contact_work -
+           gravity_work;
   }
 };
 

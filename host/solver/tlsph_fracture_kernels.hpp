@@ -54,9 +54,9 @@ class FractureBodyKernels final : public BodyKernelsImpl<B, D, Real, Material, H
     const BodyKernelSettings& s = this->s_;
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(s.gravity[a]);
-    const EnergyFunctor<D, Real, Material> base{this->material_, v.deformation_gradient, v.plastic_state, v.velocity,
-                                                v.displacement,  v.volume,              v.damping_work,  Real(s.density),
-                                                g};
+    const EnergyFunctor<D, Real, Material> base{this->material_, v.deformation_gradient, v.plastic_state,
+                                                v.velocity,      v.displacement,         v.volume,
+                                                v.damping_work,  Real(s.density),        g};
     return transform_reduce<B>(
         s.range.begin, s.range.end,
         FractureEnergyFunctor<D, Real, Material>{base, v.pairs, v.correction, fracture_, v.phase},

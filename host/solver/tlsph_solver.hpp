@@ -177,8 +177,8 @@ class TlsphSolver final : public Solver {
         cut.body = int(b);
         notches.push_back(cut);
       }
-    pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter,
-                                                       notches);
+    pairs_ =
+        build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter, notches);
     particles_.remove(field::reference_position_double);
 
     auto* B0 = particles_.template add<Mat<D, Real>>(field::correction_matrix);
@@ -334,7 +334,8 @@ class TlsphSolver final : public Solver {
     run("force", [&] {
       for (auto& k : bodies_) k->acceleration(v_, Real(dt));
     });
-    if (has_fracture_) run("phase_field", [&] {
+    if (has_fracture_)
+      run("phase_field", [&] {
         for (auto& k : bodies_) k->phase_field_rate(v_, Real(dt));
         for (auto& k : bodies_) k->phase_field_half_step(v_, half_dt);
       });
@@ -460,8 +461,8 @@ class TlsphSolver final : public Solver {
         f.direction.v[a] = Real(c.direction[size_t(a)]);
       }
       const BodyRange r = ranges_[c.body];
-      const CrackTip<Real> tip = transform_reduce<B>(r.begin, r.end, f, CrackTip<Real>{Real(-1e30), r.begin},
-                                                     CrackTipMax<Real>{});
+      const CrackTip<Real> tip =
+          transform_reduce<B>(r.begin, r.end, f, CrackTip<Real>{Real(-1e30), r.begin}, CrackTipMax<Real>{});
       CrackTipSample sample;
       sample.broken = tip.reach > Real(-1e29);
       if (sample.broken) {
@@ -560,9 +561,8 @@ class TlsphSolver final : public Solver {
     if (has_fracture_) {  // s = 1 (intact), the rest zero; every particle (bodies are ranges of one set)
       particles_.template add<Real>(field::phase_field);
       from_host<B>(std::vector<Real>(n, Real(1)), particles_.template buffer<Real>(field::phase_field));
-      for (const char* name :
-           {field::phase_field_rate, field::fracture_history, field::tensile_energy, field::fracture_released,
-            field::phase_field_next})
+      for (const char* name : {field::phase_field_rate, field::fracture_history, field::tensile_energy,
+                               field::fracture_released, field::phase_field_next})
         particles_.template add<Real>(name);
       if (!init_.phase_field_lower.empty()) {
         particles_.template add<Real>(field::phase_field_lower);
@@ -603,8 +603,8 @@ class TlsphSolver final : public Solver {
         particles_.has(field::plastic_state) ? particles_.template get<J2State<Real>>(field::plastic_state) : nullptr;
     v_.plastic_strain = opt_real(field::plastic_strain);
     v_.damping_work = opt_real(field::damping_work);
-    v_.phase = PhaseFieldViews<Real>{opt_real(field::phase_field),      opt_real(field::phase_field_rate),
-                                     opt_real(field::fracture_history), opt_real(field::tensile_energy),
+    v_.phase = PhaseFieldViews<Real>{opt_real(field::phase_field),       opt_real(field::phase_field_rate),
+                                     opt_real(field::fracture_history),  opt_real(field::tensile_energy),
                                      opt_real(field::fracture_released), opt_real(field::phase_field_lower),
                                      opt_real(field::phase_field_next)};
   }
@@ -652,8 +652,8 @@ class TlsphSolver final : public Solver {
     }
     if (m.fracture.enabled) {  // hourglass "none" (scene_reader refuses the others)
       const double speed = m.fracture.speed > 0 ? m.fracture.speed : std::sqrt((p.K + 4.0 * p.G / 3.0) / m.density);
-      const FractureParameters<Real> f{Real(m.fracture.energy_release_rate), Real(m.fracture.length_scale),
-                                       Real(speed), Real(m.fracture.phase_field_limit)};
+      const FractureParameters<Real> f{Real(m.fracture.energy_release_rate), Real(m.fracture.length_scale), Real(speed),
+                                       Real(m.fracture.phase_field_limit)};
       if (m.model == MaterialModel::neo_hookean)
         return std::make_unique<FractureBodyKernels<B, D, Real, NeoHookean<D, Real>>>(
             NeoHookean<D, Real>{Real(p.K), Real(p.G)}, k, f);
@@ -724,8 +724,8 @@ class TlsphSolver final : public Solver {
   double wave_speed(size_t b) {
     const FractureSpec& f = scene_.bodies[b].material.fracture;
     if (!f.enabled) return props(b).c0;
-    const double c = f.speed > 0 ? f.speed
-                                 : std::sqrt((props(b).K + 4.0 * props(b).G / 3.0) / scene_.bodies[b].material.density);
+    const double c =
+        f.speed > 0 ? f.speed : std::sqrt((props(b).K + 4.0 * props(b).G / 3.0) / scene_.bodies[b].material.density);
     return std::max(props(b).c0, c);
   }
 
@@ -792,7 +792,7 @@ class TlsphSolver final : public Solver {
   std::vector<double> gravity_at_start_;  // per body: sum m g . u0
   bool has_loads_ = false;
   bool has_fracture_ = false;
-  std::vector<CrackSpec> cracks_;  // crack-tip outputs
+  std::vector<CrackSpec> cracks_;                                     // crack-tip outputs
   std::vector<std::pair<std::string, const char*>> snapshot_fields_;  // output name, particle field
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};

@@ -30,8 +30,8 @@ struct TlsphViews {
   Real* von_mises;
   Real* jacobian;
   Real* von_mises_strain;
-  Real* plastic_strain;  // when some body is plastic, else null
-  Real* damping_work;    // with Kelvin-Voigt damping (factor > 0), else null
+  Real* plastic_strain;         // when some body is plastic, else null
+  Real* damping_work;           // with Kelvin-Voigt damping (factor > 0), else null
   PhaseFieldViews<Real> phase;  // when some body has fracture, else all null
 };
 

@@ -32,7 +32,9 @@ MFSD_HD inline void order_pair(Vec<D, double>& a, Vec<D, double>& b) {
     }
   }
 }
-MFSD_HD inline double cross2(const Vec<2, double>& a, const Vec<2, double>& b) { return a.v[0] * b.v[1] - a.v[1] * b.v[0]; }
+MFSD_HD inline double cross2(const Vec<2, double>& a, const Vec<2, double>& b) {
+  return a.v[0] * b.v[1] - a.v[1] * b.v[0];
+}
 }  // namespace detail
 
 // Does the segment a-b cross the notch?

@@ -65,7 +65,8 @@ template <int D, class Real>
 MFSD_HD inline Real phase_field_laplacian(const ReferencePairs<D, Real>& pairs, const Real* s, Index i) {
   const Real si = s[i];
   Real sum = Real(0);
-  for (PairIndex q = pairs.offsets[i]; q < pairs.offsets[i + 1]; ++q) sum += (si - s[pairs.neighbor[q]]) * pairs.stretch[q];
+  for (PairIndex q = pairs.offsets[i]; q < pairs.offsets[i + 1]; ++q)
+    sum += (si - s[pairs.neighbor[q]]) * pairs.stretch[q];
   return Real(2) * sum;
 }
 

@@ -39,9 +39,9 @@ MFSD_HD inline TensionSplit<D, Real> tension_split(const SaintVenantKirchhoff<D,
   const Real trE = trace(E);
   const Real trp = math::max(trE, Real(0)), trn = math::min(trE, Real(0));
   TensionSplit<D, Real> r;
-  r.psi_plus = Real(0.5) * m.lambda * trp * trp + m.G * ddot(Ep, Ep);  // eq. 11
+  r.psi_plus = Real(0.5) * m.lambda * trp * trp + m.G * ddot(Ep, Ep);   // eq. 11
   r.psi_minus = Real(0.5) * m.lambda * trn * trn + m.G * ddot(En, En);  // eq. 12
-  Mat<D, Real> Sp = Ep * (Real(2) * m.G), Sn = En * (Real(2) * m.G);  // eq. 17
+  Mat<D, Real> Sp = Ep * (Real(2) * m.G), Sn = En * (Real(2) * m.G);    // eq. 17
   Sp.add_diagonal(m.lambda * trp);
   Sn.add_diagonal(m.lambda * trn);
   r.tau_plus = mul_transposed(F * Sp, F);
@@ -54,10 +54,10 @@ MFSD_HD inline TensionSplit<D, Real> tension_split(const NeoHookean<D, Real>& m,
   const Real J = det(F);
   const Real iso = NeoHookean<D, Real>::isochoric_factor(J);
   const Mat<D, Real> b = mul_transposed(F, F);
-  Mat<D, Real> tau_vol = Mat<D, Real>::diagonal(m.volumetric_kirchhoff(J));  // K/2 (J^2 - 1) I
-  const Mat<D, Real> tau_iso = deviator(b) * (m.G * iso);                     // G dev(b_bar)
+  Mat<D, Real> tau_vol = Mat<D, Real>::diagonal(m.volumetric_kirchhoff(J));               // K/2 (J^2 - 1) I
+  const Mat<D, Real> tau_iso = deviator(b) * (m.G * iso);                                 // G dev(b_bar)
   const Real psi_vol = Real(0.5) * m.K * (Real(0.5) * (J * J - Real(1)) - math::log(J));  // U(J), eq. 22
-  const Real psi_iso = Real(0.5) * m.G * (trace(b) * iso - Real(D));                    // eq. 23
+  const Real psi_iso = Real(0.5) * m.G * (trace(b) * iso - Real(D));                      // eq. 23
   TensionSplit<D, Real> r;
   if (J >= Real(1)) {  // eq. 20-21, 31 (J >= 1)
     r.tau_plus = tau_vol + tau_iso;

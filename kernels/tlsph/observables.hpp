@@ -80,8 +80,8 @@ struct EnergySums {
   double strain;
   double plastic;  // plastic work
   double momentum[3];
-  double gravity;  // sum m g . u: the work of a uniform gravity since u = 0 (a state function)
-  double damping;  // work taken by the Kelvin-Voigt damping
+  double gravity;         // sum m g . u: the work of a uniform gravity since u = 0 (a state function)
+  double damping;         // work taken by the Kelvin-Voigt damping
   double fracture = 0.0;  // elastic energy released by phase-field degradation (fracture_stress.hpp)
   double surface = 0.0;   // crack surface energy Gc int (1-s)^2/(4 eps0) + eps0 |grad s|^2
 };

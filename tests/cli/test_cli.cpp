@@ -110,8 +110,10 @@ TEST_F(Cli, RunWritesTheDocumentedOutputs) {
   std::getline(energies, header);
   EXPECT_EQ(header,
             "time,kinetic,strain,total,hourglass_max,hourglass_mean,external_work,boundary_work,plastic,fracture,"
-            "contact_work,gravity_work,damping,relaxation,balance,momentum.x,momentum.y,block.kinetic,block.strain,block.plastic,block.fracture,"
-            "block.external_work,block.boundary_work,block.contact_work,block.gravity_work,block.damping,block.relaxation,block.balance,block.momentum.x,"
+            "contact_work,gravity_work,damping,relaxation,balance,momentum.x,momentum.y,block.kinetic,block.strain,"
+            "block.plastic,block.fracture,"
+            "block.external_work,block.boundary_work,block.contact_work,block.gravity_work,block.damping,block."
+            "relaxation,block.balance,block.momentum.x,"
             "block.momentum.y");
   std::ifstream forces(fs::path(out()) / "boundary_forces.csv");
   std::getline(forces, header);
@@ -242,19 +244,21 @@ TEST_F(Cli, BadFracture) {
       "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "phase_field_limit": 1})") + none + out(),
       "/bodies/0/material/fracture/phase_field_limit: got 1; expected a number in [0, 1)");
   expect_input_error(
-      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[0.05, 0.02], [0.05, 0.02]]}]})") +
+      "run " +
+          fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[0.05, 0.02], [0.05, 0.02]]}]})") +
           none + out(),
       "/bodies/0/material/fracture/notches/0/points: got a notch of zero length");
   expect_input_error(
-      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[1, 1], [2, 1]]}]})") + none +
-          out(),
+      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[1, 1], [2, 1]]}]})") +
+          none + out(),
       "/bodies/0/material/fracture/notches/0/points: got a notch outside body 'block'");
   expect_input_error(
       "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "notches": [{"points": [[0, 0.025]]}]})") + none +
           out(),
       "/bodies/0/material/fracture/notches/0/points: got an array of 1; expected at least 2 element(s)");
   expect_input_error(
-      "run " + fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "restrict_phase_field": [{"where": "x0 <", "minimum": 0.9}]})") +
+      "run " +
+          fr(R"({"energy_release_rate": 3, "length_scale": 0.01, "restrict_phase_field": [{"where": "x0 <", "minimum": 0.9}]})") +
           none + out(),
       "/bodies/0/material/fracture/restrict_phase_field/0/where");
   // 3-D notches: a quadrilateral that is degenerate, off its plane or not convex.
@@ -273,11 +277,12 @@ TEST_F(Cli, BadFracture) {
                      "/bodies/0/material/fracture/notches/0/points: got a degenerate quadrilateral (zero area)");
   expect_input_error("run " + quad("[[0, 0, 0.05], [0.1, 0, 0.05], [0.1, 0.1, 0.06], [0, 0.1, 0.05]]") + " -o " + out(),
                      "off the plane of the others; expected 4 corners of a planar quadrilateral");
-  expect_input_error("run " + quad("[[0, 0, 0.05], [0.1, 0, 0.05], [0.02, 0.02, 0.05], [0, 0.1, 0.05]]") + " -o " + out(),
-                     "/bodies/0/material/fracture/notches/0/points: got a quadrilateral that is not convex");
+  expect_input_error(
+      "run " + quad("[[0, 0, 0.05], [0.1, 0, 0.05], [0.02, 0.02, 0.05], [0, 0.1, 0.05]]") + " -o " + out(),
+      "/bodies/0/material/fracture/notches/0/points: got a quadrilateral that is not convex");
   // eps0 below the spacing is accepted with a warning.
-  const Result r = run("check " + fr(R"({"energy_release_rate": 3, "length_scale": 0.005})") +
-                       " --set solver.hourglass=none");
+  const Result r =
+      run("check " + fr(R"({"energy_release_rate": 3, "length_scale": 0.005})") + " --set solver.hourglass=none");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("warning: /bodies/0/material/fracture/length_scale: 0.005 is smaller than the spacing"),
             std::string::npos)

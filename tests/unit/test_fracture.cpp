@@ -45,7 +45,7 @@ TEST(TensionSplit, SaintVenantKirchhoffSpectralClosedForm) {
   const double e1 = 0.5 * (1.1 * 1.1 - 1), e2 = 0.5 * (0.95 * 0.95 - 1), tr = e1 + e2;
   EXPECT_GT(tr, 0);
   EXPECT_NEAR(sp.psi_plus, 0.5 * m.lambda * tr * tr + m.G * e1 * e1, 1e-9 * sp.psi_plus);   // eq. 11
-  EXPECT_NEAR(sp.psi_minus, m.G * e2 * e2, 1e-9 * sp.psi_plus);                            // eq. 12
+  EXPECT_NEAR(sp.psi_minus, m.G * e2 * e2, 1e-9 * sp.psi_plus);                             // eq. 12
   EXPECT_NEAR(sp.psi_plus + sp.psi_minus, m.strain_energy_density(F), 1e-9 * sp.psi_plus);  // exact split
   expect_near(sp.tau_plus + sp.tau_minus, m.kirchhoff(F), 1e-9 * m.G);
   // s = 1 is the undegraded material; s = 0 keeps the compressive part only.
@@ -83,8 +83,7 @@ TEST(TensionSplit, NeoHookeanInTensionDegradesEverything) {
 // Phase-field state on host vectors for the functors.
 struct PhaseState {
   std::vector<double> s, rate, H, tensile, released, next;
-  explicit PhaseState(size_t n)
-      : s(n, 1.0), rate(n, 0.0), H(n, 0.0), tensile(n, 0.0), released(n, 0.0), next(n, 1.0) {}
+  explicit PhaseState(size_t n) : s(n, 1.0), rate(n, 0.0), H(n, 0.0), tensile(n, 0.0), released(n, 0.0), next(n, 1.0) {}
   PhaseFieldViews<double> view() {
     return {s.data(), rate.data(), H.data(), tensile.data(), released.data(), nullptr, next.data()};
   }
@@ -135,8 +134,7 @@ TEST(PhaseField, IrreversibleUnderUnloading) {
   const FractureParameters<double> f{3.0, 1e-4, 3800.0, 0.0};
   const auto m = svk<2>();
   const double dt = 1e-8;
-  Mat<2, double> F = Mat<2, double>::identity(), rate = Mat<2, double>::zero(), B0 = Mat<2, double>::identity(),
-                 M;
+  Mat<2, double> F = Mat<2, double>::identity(), rate = Mat<2, double>::zero(), B0 = Mat<2, double>::identity(), M;
   Vec<2, double> u = Vec<2, double>::zero(), vel = Vec<2, double>::zero();
   double H_prev = 0, s_prev = 1;
   for (int step = 0; step < 2000; ++step) {
@@ -144,8 +142,8 @@ TEST(PhaseField, IrreversibleUnderUnloading) {
     F = Mat<2, double>{{{1 + strain, 0}, {0, 1}}};
     rate = Mat<2, double>::zero();
     auto v = st.view();
-    FractureStressFunctor<2, double, SaintVenantKirchhoff<2, double>>{
-        m, {0.0, 0.0}, f, true, 0.5 * dt, &F, &u, &vel, &rate, &B0, &M, nullptr, v}(0);
+    FractureStressFunctor<2, double, SaintVenantKirchhoff<2, double>>{m,    {0.0, 0.0}, f,   true, 0.5 * dt, &F, &u,
+                                                                      &vel, &rate,      &B0, &M,   nullptr,  v}(0);
     PhaseFieldRateFunctor<2, double>{fx.pairs.view(), v, f, dt}(0);
     PhaseFieldHalfStepFunctor<double>{v}(0);
     EXPECT_GE(st.H[0], H_prev);
