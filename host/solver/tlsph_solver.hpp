@@ -729,6 +729,12 @@ class TlsphSolver final : public Solver {
     return std::max(props(b).c0, c);
   }
 
+  bool inside_bounds(const Vec<D, Real>& x) const {
+    for (int a = 0; a < D; ++a)
+      if (!(double(x.v[a]) >= scene_.bounds.min[a] && double(x.v[a]) <= scene_.bounds.max[a])) return false;
+    return true;
+  }
+
   [[noreturn]] void fail(Index i) {
     auto one = [&](const char* name, auto tag) {
       using T = decltype(tag);
@@ -760,6 +766,9 @@ class TlsphSolver final : public Solver {
     } else if (!finite(u)) {
       fieldname = "displacement";
       detail = "is not finite: " + text(u);
+    } else if (inside_bounds(X + u)) {  // then |F^{-1}| of the deformed time step was not finite
+      fieldname = "deformation_gradient";
+      detail = "has no finite inverse (|F^{-1}| is not finite) at " + text(X + u);
     } else {
       fieldname = "position";
       detail = text(X + u) + " left the scene bounds";

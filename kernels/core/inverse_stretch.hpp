@@ -23,8 +23,11 @@ MFSD_HD inline Real largest_eigenvalue_symmetric(const Mat<3, Real>& A) {
   const Real q = trace(A) / Real(3);
   const Real d0 = A.m[0][0] - q, d1 = A.m[1][1] - q, d2 = A.m[2][2] - q;
   const Real p2 = d0 * d0 + d1 * d1 + d2 * d2 + Real(2) * off;
-  if (!(p2 > Real(0))) return q;  // a multiple of I
   const Real p = math::sqrt(p2 / Real(6));
+  // A multiple of I, or so close to one that p^3 below would underflow (ahead
+  // of a wave front the SPH sums leave F = I + 1e-160 and the like, and
+  // det(B)/p^3 became 0/0): the largest eigenvalue lies in [q - p, q + 2 p].
+  if (!(p > Real(1e-6) * math::fabs(q))) return q + Real(2) * p;
   Mat<3, Real> B = A;
   B.add_diagonal(-q);
   const Real r = math::clamp(det(B) / (Real(2) * p * p * p), Real(-1), Real(1));

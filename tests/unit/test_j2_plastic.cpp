@@ -188,6 +188,20 @@ TEST(J2Plastic, HerschelBulkleySteadyShearFollowsTheFlowLaw) {
   EXPECT_EQ(s.alpha, 0.0);
 }
 
+// Ahead of a wave front the SPH sums leave F = I + (1e-160 and the like): the
+// closed-form cubic divided det(B) by an underflowed p^3 (0/0) and the
+// deformed time step stopped a 3-D J2 run with a non-finite |F^{-1}|.
+TEST(InverseStretch, FiniteNextToTheIdentity) {
+  for (double eps : {1e-160, 1e-200, 1e-300, 1e-12}) {
+    Mat<3, double> F = Mat<3, double>::identity();
+    F.m[0][1] = eps;
+    F.m[2][2] += 0.5 * eps;
+    const double s = inverse_stretch(F);
+    EXPECT_TRUE(std::isfinite(s)) << eps;
+    EXPECT_NEAR(s, 1.0, 1e-5) << eps;
+  }
+}
+
 TEST(InverseStretch, IsOneOverTheSmallestPrincipalStretch) {
   EXPECT_NEAR(inverse_stretch(Mat<3, double>::identity()), 1.0, 1e-14);
   Mat<3, double> D3 = Mat<3, double>::zero();
