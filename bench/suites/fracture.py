@@ -59,7 +59,7 @@ def main(args):
           "| extra cost of fracture |", "|---|---|---|---|---|---|"]
     for r in rows:
         st = r["stages"]
-        ns = " / ".join(f"{st[k]['ns_per_particle_step']:.0f}" if k in st else "-"
+        ns = " / ".join(f"{st[k]['ns_per_particle_step']:.3g}" if k in st else "-"
                         for k in ("stress", "force", "phase_field"))
         extra = ""
         if r["variant"].startswith("fracture-"):
