@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -54,6 +55,16 @@ Snapshot rigid_body_snapshot(const Scene& scene, const std::vector<RigidBodyMoti
   for (const char* name : {"von_mises", "J", "hourglass", "von_mises_strain"})  // as on the bodies' particles
     s.fields.push_back({name, std::vector<double>(s.n, std::string(name) == "J" ? 1.0 : 0.0)});
   return s;
+}
+
+// The next output time after `t`: `next` itself, or the first multiple of the
+// interval beyond t (in O(1), however many intervals a step spans).
+double next_multiple(double next, double interval, double t) {
+  if (next > t) return next;
+  double n = (std::floor(t / interval) + 1.0) * interval;
+  if (!(n > t)) n = t + interval;
+  if (!(n > t)) n = std::nextafter(t, std::numeric_limits<double>::infinity());
+  return n;
 }
 
 // Outputs of a previous run in the same folder would mix with this one's.
@@ -193,8 +204,8 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       const bool last = t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps);
       const bool snap = t >= next_output - eps || last;
       if (snap || t >= next_probe - eps) write_outputs(snap);
-      while (next_probe <= t + eps) next_probe += scene.output.probe_interval;
-      while (next_output <= t + eps) next_output += scene.output.interval;
+      next_probe = next_multiple(next_probe, scene.output.probe_interval, t + eps);
+      next_output = next_multiple(next_output, scene.output.interval, t + eps);
       progress.update(t, solver->steps());
     }
     status.state = "completed";

@@ -144,9 +144,51 @@ SolverSpec read_solver(JsonNode s, int dim) {
 
 }  // namespace
 
+namespace {
+// Arrays and objects nested deeper than this are refused before parsing: a
+// parsed document is destroyed recursively, and a scene never needs it.
+constexpr int kMaxJsonDepth = 256;
+
+// Throws a SceneError at the first bracket nested deeper than kMaxJsonDepth
+// (brackets inside strings do not count).
+void check_json_depth(const std::string& text, const std::string& source_name) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) {
+        size_t line, column;
+        line_column(text, k, line, column);
+        throw SceneError(source_name + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                         ": invalid scene: arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) +
+                         " levels");
+      }
+    }
+    if (c == ']' || c == '}') --depth;
+  }
+}
+}  // namespace
+
 Json parse_scene_json(const std::string& text, const std::string& source_name) {
+  check_json_depth(text, source_name);
   try {
     return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const Json::out_of_range& e) {  // e.g. a number beyond the double range, -1e999
+    std::string what = e.what();
+    const auto p = what.find("] ");
+    if (p != std::string::npos) what = what.substr(p + 2);
+    throw SceneError(source_name + ": invalid JSON: " + what + " (numbers must be finite doubles)");
   } catch (const Json::parse_error& e) {
     size_t line, column;
     line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);
@@ -159,6 +201,8 @@ Json parse_scene_json(const std::string& text, const std::string& source_name) {
   }
 }
 
+std::string path_of(const std::string& assignment) { return assignment.substr(0, assignment.find('=')); }
+
 void apply_override(Json& doc, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -166,10 +210,11 @@ void apply_override(Json& doc, const std::string& assignment) {
   const std::string path = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
   Json value;
+  check_json_depth(text, "--set " + path_of(assignment));
   try {
     value = Json::parse(text);
-  } catch (const Json::parse_error&) {
-    value = text;  // a plain string such as laplacian
+  } catch (const Json::exception&) {
+    value = text;  // a plain string such as laplacian (or a number beyond double range, refused where read)
   }
   std::vector<std::string> parts;
   std::stringstream ss(path);
@@ -350,8 +395,17 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
 
   {
     JsonNode out = root.object_or_empty("output");
-    scene.output.interval = out.number("interval", scene.solver.end_time / 100.0, Range::positive());
-    scene.output.probe_interval = out.number("probe_interval", scene.output.interval / 20.0, Range::positive());
+    // At most 1e9 rows: smaller intervals are typing errors (5e-324), and the
+    // run would never end writing them.
+    const double shortest = scene.solver.end_time * 1e-9;
+    const Range interval{shortest, 1e308, false, false,
+                         "an interval of at least end_time / 1e9 (" + [&] {
+                           std::ostringstream o;
+                           o << shortest;
+                           return o.str();
+                         }() + " s)"};
+    scene.output.interval = out.number("interval", scene.solver.end_time / 100.0, interval);
+    scene.output.probe_interval = out.number("probe_interval", scene.output.interval / 20.0, interval);
     scene.output.vtu = out.boolean("vtu", true);
     out.finish();
   }

@@ -289,6 +289,21 @@ TEST_F(Cli, BadFracture) {
       << r.output;
 }
 
+// From the mutation fuzz of issue 19: a number beyond the double range, JSON
+// nested 100,000 deep (which crashed the parser's destructor), and output
+// intervals so small that the run would never end writing rows.
+TEST_F(Cli, HostileInputIsAnInputError) {
+  expect_input_error("run " + scene("\"end_time\": 0.002", "\"end_time\": -1e999") + " -o " + out(),
+                     "invalid JSON: number overflow parsing '-1e999' (numbers must be finite doubles)");
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  expect_input_error("run " + scene("\"probes\":", "\"deep\": " + deep + ", \"probes\":") + " -o " + out(),
+                     "invalid scene: arrays and objects nested deeper than 256 levels");
+  expect_input_error("run " + scene() + " -o " + out() + " --set output.interval=5e-324",
+                     "/output/interval: got 5e-324; expected an interval of at least end_time / 1e9 (2e-12 s)");
+  expect_input_error("run " + scene() + " -o " + out() + " --set output.probe_interval=1e-300",
+                     "/output/probe_interval: got 1e-300; expected an interval of at least end_time / 1e9");
+}
+
 TEST_F(Cli, BadContact) {
   const std::string probes = R"("probes":)";
   auto with = [&](const std::string& contact) { return scene(probes, "\"contact\": " + contact + ", " + probes); };
