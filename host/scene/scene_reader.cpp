@@ -398,8 +398,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     // At most 1e9 rows: smaller intervals are typing errors (5e-324), and the
     // run would never end writing them.
     const double shortest = scene.solver.end_time * 1e-9;
-    const Range interval{shortest, 1e308, false, false,
-                         "an interval of at least end_time / 1e9 (" + [&] {
+    const Range interval{shortest, 1e308, false, false, "an interval of at least end_time / 1e9 (" + [&] {
                            std::ostringstream o;
                            o << shortest;
                            return o.str();

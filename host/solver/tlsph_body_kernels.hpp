@@ -103,16 +103,18 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
-    Vec<D, Real> g;
-    for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
-    return transform_reduce<B>(
-        s_.range.begin, s_.range.end,
-        EnergyFunctor<D, Real, Material>{material_, v.deformation_gradient, v.plastic_state, v.velocity, v.displacement,
-                                         v.volume, v.damping_work, Real(s_.density), g},
-        EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0, 0.0, 0.0}, EnergySumsPlus{});
+    return transform_reduce<B>(s_.range.begin, s_.range.end, energy_functor(v), EnergySums{}, EnergySumsPlus{});
   }
 
  protected:
+  // Per-particle energies of the body (kernels/tlsph/observables.hpp).
+  EnergyFunctor<D, Real, Material> energy_functor(const TlsphViews<D, Real>& v) const {
+    Vec<D, Real> g;
+    for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
+    return {material_, v.deformation_gradient, v.plastic_state,  v.velocity, v.displacement,
+            v.volume,  v.damping_work,         Real(s_.density), g};
+  }
+
   Material material_;
   BodyKernelSettings s_;
 };

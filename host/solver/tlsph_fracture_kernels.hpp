@@ -51,16 +51,10 @@ class FractureBodyKernels final : public BodyKernelsImpl<B, D, Real, Material, H
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
-    const BodyKernelSettings& s = this->s_;
-    Vec<D, Real> g;
-    for (int a = 0; a < D; ++a) g.v[a] = Real(s.gravity[a]);
-    const EnergyFunctor<D, Real, Material> base{this->material_, v.deformation_gradient, v.plastic_state,
-                                                v.velocity,      v.displacement,         v.volume,
-                                                v.damping_work,  Real(s.density),        g};
     return transform_reduce<B>(
-        s.range.begin, s.range.end,
-        FractureEnergyFunctor<D, Real, Material>{base, v.pairs, v.correction, fracture_, v.phase},
-        EnergySums{0.0, 0.0, 0.0, {0.0, 0.0, 0.0}, 0.0, 0.0, 0.0, 0.0}, EnergySumsPlus{});
+        this->s_.range.begin, this->s_.range.end,
+        FractureEnergyFunctor<D, Real, Material>{this->energy_functor(v), v.pairs, v.correction, fracture_, v.phase},
+        EnergySums{}, EnergySumsPlus{});
   }
 
  private:

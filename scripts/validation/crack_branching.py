@@ -49,34 +49,8 @@ def analyse(outdir, dp):
 
 
 def main():
-    args = fs.arguments(__doc__, [0.5, 0.25, 0.125], "crack_branching")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    rows, curves = [], []
-    for dp_mm in args.dp:
-        outdir = fs.run(SCENE, "crack_branching", dp_mm, args)
-        row, crack, energies, final = analyse(outdir, dp_mm * 1e-3)
-        row.update(fs.run_record(outdir, args))
-        rows.append(row)
-        curves.append((dp_mm, crack, energies, final))
-        print(row, flush=True)
-
-    fig, ax = plt.subplots(2, 2, figsize=(12, 8))
-    for dp_mm, crack, energies, _ in curves:
-        fs.plot_energies(ax[0, 0], energies, f"dp = {dp_mm:g} mm")
-        on = np.array(crack["broken"]) > 0
-        ax[0, 1].plot(np.array(crack["time"])[on] * 1e6,
-                      (np.array(crack["length"])[on] - NOTCH_TIP - dp_mm * 1e-3) * 1e3, label=f"dp = {dp_mm:g} mm")
-    ax[0, 0].set(title="strain and fracture energy (seed 001 Fig. 25)")
-    ax[0, 0].legend(fontsize=7)
-    ax[0, 1].set(xlabel="t [us]", ylabel="crack extension beyond the notch [mm]", title="crack tip")
-    ax[0, 1].legend(fontsize=7)
-    for k, (dp_mm, _, _, final) in enumerate(curves[-2:]):
-        fs.plot_phase_field(fig, ax[1, k], final, f"dp = {dp_mm:g} mm")
-    fig.tight_layout()
-    m.write_study(args.stem, {"scene": SCENE, "machine": m.machine(), "definitions": __doc__.split("Definitions")[1],
-                              "runs": rows}, fig)
+    fs.study(__doc__, SCENE, "crack_branching", [0.5, 0.25, 0.125], analyse, lambda dp: NOTCH_TIP + dp,
+             "strain and fracture energy (seed 001 Fig. 25)", "crack extension beyond the notch [mm]")
 
 
 if __name__ == "__main__":

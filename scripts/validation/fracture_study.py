@@ -88,3 +88,37 @@ def angle_of_fit(points):
         return None
     x, y = points[:, 0] - points[:, 0].mean(), points[:, 1] - points[:, 1].mean()
     return math.degrees(0.5 * math.atan2(2 * (x * y).sum(), (x * x).sum() - (y * y).sum()))
+
+
+def study(doc, scene, name, default_dp, analyse, notch_length, energy_title, tip_label):
+    """The whole study of a 2-D notched scene: runs it at each --dp, analyse(outdir, dp) ->
+    (row, crack, energies, final), and writes the result file and the figure (energies,
+    the crack's growth beyond the notch (notch_length(dp) [m]), the phase field of the
+    two finest runs)."""
+    args = arguments(doc, default_dp, name)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows, curves = [], []
+    for dp_mm in args.dp:
+        outdir = run(scene, name, dp_mm, args)
+        row, crack, energies, final = analyse(outdir, dp_mm * 1e-3)
+        row.update(run_record(outdir, args))
+        rows.append(row)
+        curves.append((dp_mm, crack, energies, final))
+        print(row, flush=True)
+    fig, ax = plt.subplots(2, 2, figsize=(12, 9))
+    for dp_mm, crack, energies, _ in curves:
+        plot_energies(ax[0, 0], energies, f"dp = {dp_mm:g} mm")
+        on = np.array(crack["broken"]) > 0
+        ax[0, 1].plot(np.array(crack["time"])[on] * 1e6,
+                      (np.array(crack["length"])[on] - notch_length(dp_mm * 1e-3)) * 1e3, label=f"dp = {dp_mm:g} mm")
+    ax[0, 0].set(title=energy_title)
+    ax[0, 0].legend(fontsize=7)
+    ax[0, 1].set(xlabel="t [us]", ylabel=tip_label, title="crack tip")
+    ax[0, 1].legend(fontsize=7)
+    for k, (dp_mm, _, _, final) in enumerate(curves[-2:]):
+        plot_phase_field(fig, ax[1, k], final, f"dp = {dp_mm:g} mm")
+    fig.tight_layout()
+    m.write_study(args.stem, {"scene": scene, "machine": m.machine(), "definitions": doc.split("Definitions")[1],
+                              "runs": rows}, fig)

@@ -39,33 +39,8 @@ def analyse(outdir, dp):
 
 
 def main():
-    args = fs.arguments(__doc__, [0.5, 0.25], "kalthoff_winkler")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    rows, curves = [], []
-    for dp_mm in args.dp:
-        outdir = fs.run(SCENE, "kalthoff_winkler", dp_mm, args)
-        row, crack, energies, final = analyse(outdir, dp_mm * 1e-3)
-        row.update(fs.run_record(outdir, args))
-        rows.append(row)
-        curves.append((dp_mm, crack, energies, final))
-        print(row, flush=True)
-    fig, ax = plt.subplots(2, 2, figsize=(12, 10))
-    for dp_mm, crack, energies, _ in curves:
-        fs.plot_energies(ax[0, 0], energies, f"dp = {dp_mm:g} mm")
-        on = np.array(crack["broken"]) > 0
-        ax[0, 1].plot(np.array(crack["time"])[on] * 1e6, (np.array(crack["length"])[on] - 0.05 - dp_mm * 1e-3) * 1e3,
-                      label=f"dp = {dp_mm:g} mm")
-    ax[0, 0].set(title="strain and fracture energy (seed 001 Fig. 28)")
-    ax[0, 0].legend(fontsize=7)
-    ax[0, 1].set(xlabel="t [us]", ylabel="crack reach along 70 degrees [mm]", title="crack tip")
-    ax[0, 1].legend(fontsize=7)
-    for k, (dp_mm, _, _, final) in enumerate(curves[-2:]):
-        fs.plot_phase_field(fig, ax[1, k], final, f"dp = {dp_mm:g} mm")
-    fig.tight_layout()
-    m.write_study(args.stem, {"scene": SCENE, "machine": m.machine(), "definitions": __doc__.split("Definitions")[1],
-                              "runs": rows}, fig)
+    fs.study(__doc__, SCENE, "kalthoff_winkler", [0.5, 0.25], analyse, lambda dp: 0.05 + dp,
+             "strain and fracture energy (seed 001 Fig. 28)", "crack reach along 70 degrees [mm]")
 
 
 if __name__ == "__main__":

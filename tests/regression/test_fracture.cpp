@@ -12,13 +12,20 @@
 
 using namespace mfsd;
 
-TEST(Fracture, CrackBranchingInitiatesRunsAndBranches) {
-  const SceneDocument doc = test::load_config("crack_branching_2d.json", {"constants.dp=0.5e-3"});
-  const InitialParticles particles = generate_particles(doc.scene);
+namespace {
+// The scene's solver on 2 threads, initialized.
+std::unique_ptr<Solver> start(const SceneDocument& doc) {
   SolverOptions o;
   o.threads = 2;
-  auto solver = make_solver(doc.scene, particles, o);
+  auto solver = make_solver(doc.scene, generate_particles(doc.scene), o);
   solver->initialize();
+  return solver;
+}
+}  // namespace
+
+TEST(Fracture, CrackBranchingInitiatesRunsAndBranches) {
+  const SceneDocument doc = test::load_config("crack_branching_2d.json", {"constants.dp=0.5e-3"});
+  auto solver = start(doc);
   const double end = doc.scene.solver.end_time, notch = 0.05 + 0.5e-3;  // the notch starts dp outside
   double initiation = -1, impulse = 0;
   const EnergySample e0 = solver->energies();
@@ -81,11 +88,7 @@ TEST(Fracture, CrackBranchingInitiatesRunsAndBranches) {
 // the path stops there.
 TEST(Fracture, NotchedBarOpensAtItsNotch) {
   const SceneDocument doc = test::load_config("scenes/notched_bar_2d.json", {});
-  const InitialParticles particles = generate_particles(doc.scene);
-  SolverOptions o;
-  o.threads = 2;
-  auto solver = make_solver(doc.scene, particles, o);
-  solver->initialize();
+  auto solver = start(doc);
   const double end = 25e-6, mid = 0.02;
   bool started = false, crossed = false;
   while (solver->time() < end && !crossed) {
@@ -110,7 +113,9 @@ TEST(Fracture, NotchedBarOpensAtItsNotch) {
     }
     started = started || broken > 0;
     crossed = reach > 9.5e-3;
-    if (reach < 9e-3) EXPECT_EQ(elsewhere, 0) << "at t = " << solver->time();
+    if (reach < 9e-3) {
+      EXPECT_EQ(elsewhere, 0) << "at t = " << solver->time();
+    }
   }
   EXPECT_TRUE(started);
   EXPECT_TRUE(crossed) << "the crack should have crossed the bar by 25 us";
@@ -123,11 +128,7 @@ TEST(Fracture, NotchedBarOpensAtItsNotch) {
 // seed's 0.125 mm (seed: about 23 us and 70 degrees).
 TEST(Fracture, KalthoffWinklerCrackRunsAtSeventyDegrees) {
   const SceneDocument doc = test::load_config("kalthoff_winkler_2d.json", {"constants.dp=0.5e-3"});
-  const InitialParticles particles = generate_particles(doc.scene);
-  SolverOptions o;
-  o.threads = 2;
-  auto solver = make_solver(doc.scene, particles, o);
-  solver->initialize();
+  auto solver = start(doc);
   const double end = doc.scene.solver.end_time, notch = 0.05 + 0.5e-3;
   double initiation = -1;
   while (solver->time() < end * (1 - 1e-12)) {
