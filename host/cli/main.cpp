@@ -1,9 +1,11 @@
 // mfsd command-line interface:
 //   mfsd run [SCENE] [-o DIR] [--backend cpu|cuda] [--threads N] [--precision float|double]
-//            [--set path=value]... [--max-steps N] [--quiet]
+//            [--set path=value]... [--max-steps N] [--quiet] [--restart DIR] [--checkpoint-every MIN]
 //   mfsd check SCENE [--set path=value]...
 //   mfsd --version | --help
-// Exit codes: 0 success, 1 internal error, 2 bad input, 3 numerical failure.
+// Exit codes: 0 success, 2 bad input, 3 numerical failure, 130 / 143 interrupted
+// by SIGINT / SIGTERM (checkpoint written), 1 an internal error (a bug).
+#include <cmath>
 #include <cstdio>
 // --set values may hold JSON with commas: never split option values.
 #define CXXOPTS_VECTOR_DELIMITER '\0'
@@ -14,6 +16,7 @@
 
 #include "host/cli/check_summary.hpp"
 #include "host/driver/run.hpp"
+#include "host/output/checkpoint_file.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/scene/scene_reader.hpp"
@@ -42,10 +45,13 @@ const char* kUsage =
     "                          --set bodies.plate.material.poisson_ratio=0.4 (repeatable)\n"
     "  --max-steps N           stop after N steps\n"
     "  --warmup-steps N        leave the first N steps out of timing.json (benchmarks)\n"
+    "  --checkpoint-every MIN  write a checkpoint every MIN minutes of wall time (also: output.checkpoint_interval)\n"
+    "  --restart DIR           continue the run whose output (or checkpoint) folder is DIR, in that folder\n"
     "  -q, --quiet             no progress line and no summary\n"
     "\n"
     "outputs: run.json, snapshots.pvd + snapshots/*.vtu (ParaView), probes.csv, energies.csv, timing.json\n"
-    "exit codes: 0 success, 2 bad input, 3 numerical failure (NaN/Inf or particle out of bounds)\n";
+    "exit codes: 0 success, 2 bad input, 3 numerical failure (NaN/Inf or particle out of bounds),\n"
+    "            130 / 143 interrupted by Ctrl-C / SIGTERM (a checkpoint is written: continue with --restart)\n";
 
 std::string join_args(int argc, char** argv) {
   std::string s;
@@ -87,7 +93,8 @@ int command_run(int argc, char** argv, const std::string& command_line) {
   opts.add_options()("o,output", "", cxxopts::value<std::string>())("backend", "", cxxopts::value<std::string>())(
       "threads", "", cxxopts::value<int>())("precision", "", cxxopts::value<std::string>())(
       "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
-      "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>());
+      "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>())(
+      "restart", "", cxxopts::value<std::string>())("checkpoint-every", "", cxxopts::value<double>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");
@@ -122,6 +129,15 @@ int command_run(int argc, char** argv, const std::string& command_line) {
     if (o.warmup_steps < 0) throw UsageError("--warmup-steps: expected N >= 0");
   }
   o.quiet = r.count("quiet") > 0;
+  if (r.count("checkpoint-every")) {
+    o.checkpoint_every_minutes = r["checkpoint-every"].as<double>();
+    if (!(o.checkpoint_every_minutes > 0) || !std::isfinite(o.checkpoint_every_minutes))
+      throw UsageError("--checkpoint-every: expected a positive number of minutes");
+  }
+  if (r.count("restart")) {
+    o.restart = r["restart"].as<std::string>();
+    if (r.count("output")) throw UsageError("--restart continues in the checkpoint's output folder; drop -o");
+  }
   const RunResult result = run_scene(doc, o);
   return result.exit_code;
 }
@@ -149,6 +165,12 @@ int main(int argc, char** argv) {
     throw UsageError("unknown command '" + cmd + "' (expected run, check, --version or --help)");
   } catch (const SceneError& e) {
     std::fprintf(stderr, "mfsd: error: %s\n", e.what());
+    return 2;
+  } catch (const CheckpointError& e) {
+    std::fprintf(stderr, "mfsd: error: %s\n", e.what());
+    return 2;
+  } catch (const StateMismatch& e) {
+    std::fprintf(stderr, "mfsd: error: the checkpoint does not fit this run: %s\n", e.what());
     return 2;
   } catch (const UsageError& e) {
     std::fprintf(stderr, "mfsd: error: %s\nrun 'mfsd --help' for usage\n", e.what());

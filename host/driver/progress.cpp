@@ -18,16 +18,22 @@ void format_duration(double s, char* buf, size_t n) {
   }
 }
 
-Progress::Progress(double end_time, bool enabled)
-    : end_time_(end_time), enabled_(enabled), tty_(isatty(STDERR_FILENO) != 0) {
+Progress::Progress(double end_time, bool enabled, double start_time, long start_steps)
+    : end_time_(end_time),
+      start_time_(start_time),
+      start_steps_(start_steps),
+      enabled_(enabled),
+      tty_(isatty(STDERR_FILENO) != 0) {
   start_ = last_ = std::chrono::steady_clock::now();
+  last_decile_ = end_time > 0 ? int(10.0 * start_time / end_time + 1e-9) : 0;
 }
 
 void Progress::print(double time, long steps, bool live) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double frac = end_time_ > 0 ? std::min(1.0, time / end_time_) : 0.0;
-  const double rate = wall > 0 ? steps / wall : 0.0;
-  const double eta = frac > 0 ? wall * (1.0 - frac) / frac : NAN;
+  const double rate = wall > 0 ? double(steps - start_steps_) / wall : 0.0;
+  const double done = end_time_ > start_time_ ? (time - start_time_) / (end_time_ - start_time_) : 0.0;
+  const double eta = done > 0 ? wall * (1.0 - done) / done : NAN;
   char eta_text[32], wall_text[32];
   format_duration(eta, eta_text, sizeof eta_text);
   format_duration(wall, wall_text, sizeof wall_text);

@@ -9,13 +9,15 @@ namespace mfsd {
 
 class Progress {
  public:
-  Progress(double end_time, bool enabled);
+  // start_time, start_steps: where a continued run starts (rates and ETA count from there).
+  Progress(double end_time, bool enabled, double start_time = 0, long start_steps = 0);
   void update(double time, long steps);
   void finish();  // ends the live line
 
  private:
   void print(double time, long steps, bool live);
-  double end_time_;
+  double end_time_, start_time_;
+  long start_steps_;
   bool enabled_, tty_;
   std::chrono::steady_clock::time_point start_, last_;
   int last_decile_ = 0;

@@ -10,11 +10,16 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
+#include <optional>
 
+#include "host/driver/interrupt.hpp"
 #include "host/driver/output_rows.hpp"
 #include "host/driver/progress.hpp"
+#include "host/driver/run_checkpoint.hpp"
 #include "host/driver/run_report.hpp"
+#include "host/output/checkpoint_file.hpp"
 #include "host/output/csv_writer.hpp"
 #include "host/output/pvd_index.hpp"
 #include "host/output/vtu_writer.hpp"
@@ -73,6 +78,7 @@ void remove_previous_outputs(const std::string& dir) {
                         "rigid_bodies.pvd"})
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
+  for (const char* c : {"checkpoint", "checkpoint.previous", "checkpoint.new"}) fs::remove_all(fs::path(dir) / c);
   for (auto& e : fs::directory_iterator(dir))
     if ((e.path().filename().string().rfind("measure_", 0) == 0 ||
          e.path().filename().string().rfind("crack_", 0) == 0) &&
@@ -83,6 +89,12 @@ void remove_previous_outputs(const std::string& dir) {
 }  // namespace
 
 void prepare_output_dir(const std::string& dir) {
+  // A name the file system cannot hold is found before anything is created.
+  for (const auto& part : fs::path(dir))
+    if (part.string().size() > 255)
+      throw SceneError("output folder '" + dir.substr(0, 60) + "...'", "",
+                       "folder names of at most 255 characters (one has " + std::to_string(part.string().size()) +
+                           "; shorten the scene's name or give -o DIR)");
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
@@ -92,21 +104,42 @@ void prepare_output_dir(const std::string& dir) {
 }
 
 RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
+  InterruptHandling interrupts;  // SIGINT / SIGTERM: finish the step, checkpoint, stop
   const Scene& scene = doc.scene;
-  // Everything that can be wrong with the input is found before the folder is made.
+  // Everything that can be wrong with the input is found before the folder is
+  // made or, for a continued run, touched.
+  std::optional<RestartPoint> restart;
+  std::optional<CheckpointContents> saved;
+  if (!options.restart.empty()) {
+    restart = find_restart(options.restart, doc, options);
+    saved = read_checkpoint(restart->folder);
+  }
   const InitialParticles particles = generate_particles(scene);
   std::unique_ptr<Solver> solver = make_solver(scene, particles, options.solver);
 
-  const std::string dir = options.output_dir.empty() ? "out/" + scene.name : options.output_dir;
+  const std::string dir =
+      restart ? restart->output_dir : (options.output_dir.empty() ? "out/" + scene.name : options.output_dir);
+  const std::string snapshot_stem = "snapshots/" + scene.name;
+  if ((snapshot_stem + "_rigid_00000.vtu").size() - 10 > 255)
+    throw SceneError("/name", "a name of " + std::to_string(scene.name.size()) + " characters",
+                     "at most 239 characters (it names the snapshot files)");
   const bool existed = fs::exists(dir);
   prepare_output_dir(dir);
-  if (existed) remove_previous_outputs(dir);
+  if (existed && !restart) remove_previous_outputs(dir);
   fs::create_directories(fs::path(dir) / "snapshots");
 
   RunStatus status;
   status.state = "running";
   const auto t_start = Clock::now();
   solver->initialize();
+  if (restart) {
+    solver->restore_state(saved->archive);
+    saved.reset();  // the state is in the solver now
+    status.restarted_from = restart->folder;
+    status.start_time = solver->time();
+    status.start_steps = solver->steps();
+    for (const auto& w : restart->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   status.setup_seconds = seconds_since(t_start);
   const SetupReport setup = solver->setup_report();
   write_run_json(dir, doc, options, setup, status);
@@ -118,35 +151,64 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     if (setup.regularized_corrections > 0)
       std::printf("mfsd: %ld kernel-correction matrices were near-singular and regularized\n",
                   setup.regularized_corrections);
+    if (restart)
+      std::printf("mfsd: continuing from %s at t = %.9g s, step %ld\n", restart->folder.c_str(), solver->time(),
+                  solver->steps());
     std::printf("mfsd: output in %s/\n", dir.c_str());
     std::fflush(stdout);
   }
 
-  CsvWriter probes_csv(dir + "/probes.csv", probe_columns(scene));
-  CsvWriter energies_csv(dir + "/energies.csv", energy_columns(scene));
+  // The CSV series: new files, or for a continued run the files as they were
+  // at the checkpoint, appended to.
+  std::vector<std::pair<std::string, CsvWriter*>> csv_files;
+  auto open_csv = [&](const std::string& name, const std::vector<std::string>& columns) {
+    std::unique_ptr<CsvWriter> w;
+    if (restart) {
+      auto it = restart->position.csv_bytes.find(name);
+      if (it == restart->position.csv_bytes.end())
+        throw CheckpointError("checkpoint " + restart->folder + " does not know " + name);
+      w = std::make_unique<CsvWriter>(dir + "/" + name, columns, it->second);
+    } else {
+      w = std::make_unique<CsvWriter>(dir + "/" + name, columns);
+    }
+    csv_files.emplace_back(name, w.get());
+    return w;
+  };
+  std::unique_ptr<CsvWriter> probes_csv = open_csv("probes.csv", probe_columns(scene));
+  std::unique_ptr<CsvWriter> energies_csv = open_csv("energies.csv", energy_columns(scene));
   std::vector<std::unique_ptr<CsvWriter>> measure_csv;
   for (auto& mp : scene.measure_planes)
-    measure_csv.push_back(std::make_unique<CsvWriter>(dir + "/measure_" + mp.name + ".csv", measure_columns(scene)));
+    measure_csv.push_back(open_csv("measure_" + mp.name + ".csv", measure_columns(scene)));
   const std::vector<CrackSpec> cracks = crack_specs(scene);
   std::vector<std::unique_ptr<CsvWriter>> crack_csv;
   for (const CrackSpec& c : cracks)
-    crack_csv.push_back(
-        std::make_unique<CsvWriter>(dir + "/crack_" + scene.bodies[c.body].name + ".csv", crack_columns(scene)));
+    crack_csv.push_back(open_csv("crack_" + scene.bodies[c.body].name + ".csv", crack_columns(scene)));
   std::unique_ptr<CsvWriter> forces_csv;
   if (!scene.clamps.empty() || !scene.conditions.empty() || !scene.walls.empty() || !scene.contact.rigid_bodies.empty())
-    forces_csv = std::make_unique<CsvWriter>(dir + "/boundary_forces.csv", boundary_force_columns(scene));
+    forces_csv = open_csv("boundary_forces.csv", boundary_force_columns(scene));
   PvdIndex pvd(dir + "/snapshots.pvd");
   std::vector<RigidBodyMotion> rigid;
   for (size_t k = 0; k < scene.rigid_bodies.size(); ++k)
     rigid.emplace_back(scene.rigid_bodies[k], scene.constants, "/rigid_bodies/" + std::to_string(k));
   PvdIndex rigid_pvd(dir + "/rigid_bodies.pvd");
   const bool single = options.solver.precision == Precision::single_precision;
-  int snapshot_count = 0;
+  const double end_time = scene.solver.end_time;
+  const double eps = 1e-12 * end_time;
+  OutputPosition at;
+  at.next_output = scene.output.interval;
+  at.next_probe = scene.output.probe_interval;
+  at.next_checkpoint = scene.output.checkpoint_interval;
+  if (restart) {
+    at = restart->position;
+    if (scene.output.vtu) pvd.restore(at.snapshots);
+    if (scene.output.vtu && !rigid.empty()) rigid_pvd.restore(at.rigid_snapshots);
+  }
   double output_seconds = 0;
+  double last_snapshot_time = -1;
 
   auto write_outputs = [&](bool snapshot) {
     const auto t0 = Clock::now();
-    if (!scene.probes.empty()) probes_csv.row(probe_row(scene, solver->time(), solver->probes()));
+    if (!scene.probes.empty()) probes_csv->row(probe_row(scene, solver->time(), solver->probes()));
     if (forces_csv) forces_csv->row(boundary_force_row(scene, solver->time(), solver->boundary_forces()));
     if (!crack_csv.empty()) {
       const auto tips = solver->crack_tips();
@@ -159,56 +221,97 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     }
     if (snapshot) {
       const EnergySample e = solver->energies();
-      energies_csv.row(energy_row(solver->time(), e, scene.dimension));
+      energies_csv->row(energy_row(solver->time(), e, scene.dimension));
       if (scene.output.vtu) {
-        char name[64];
-        std::snprintf(name, sizeof name, "snapshots/%s_%05d.vtu", scene.name.c_str(), snapshot_count);
+        char number[16];
+        std::snprintf(number, sizeof number, "_%05d.vtu", at.snapshot_count);
+        const std::string name = snapshot_stem + number;
         write_vtu(dir + "/" + name, solver->snapshot(), single);
         pvd.add(solver->time(), name);
         if (!rigid.empty()) {
-          std::snprintf(name, sizeof name, "snapshots/%s_rigid_%05d.vtu", scene.name.c_str(), snapshot_count);
-          write_vtu(dir + "/" + name, rigid_body_snapshot(scene, rigid, particles.rigid_markers, solver->time()),
+          const std::string rigid_name = snapshot_stem + "_rigid" + number;
+          write_vtu(dir + "/" + rigid_name, rigid_body_snapshot(scene, rigid, particles.rigid_markers, solver->time()),
                     single);
-          rigid_pvd.add(solver->time(), name);
+          rigid_pvd.add(solver->time(), rigid_name);
         }
       }
-      ++snapshot_count;
+      ++at.snapshot_count;
+      last_snapshot_time = solver->time();
     }
     output_seconds += seconds_since(t0);
   };
 
-  const double end_time = scene.solver.end_time;
-  const double eps = 1e-12 * end_time;
-  double next_output = scene.output.interval;
-  double next_probe = scene.output.probe_interval;
-  write_outputs(true);
+  // A checkpoint of the state now and of where the outputs stand.
+  const bool checkpointing = scene.output.checkpoint_interval > 0 || options.checkpoint_every_minutes > 0;
+  auto last_checkpoint_wall = Clock::now();
+  auto write_checkpoint_now = [&] {
+    at.snapshots = pvd.entries();
+    at.rigid_snapshots = rigid_pvd.entries();
+    at.csv_bytes.clear();
+    for (auto& [name, w] : csv_files) at.csv_bytes[name] = w->bytes();
+    StateArchive archive;
+    solver->save_state(archive);
+    const Json meta = checkpoint_meta(doc, options, solver->time(), solver->steps(), at);
+    const CheckpointWriteReport r = write_checkpoint(checkpoint_folder(dir), meta.dump(), archive);
+    ++status.checkpoints;
+    status.checkpoint_bytes = double(r.bytes);
+    status.checkpoint_seconds += r.seconds;
+    status.checkpoint = checkpoint_folder(dir);
+    last_checkpoint_wall = Clock::now();
+  };
 
-  Progress progress(end_time, !options.quiet);
+  if (!restart) write_outputs(true);
+
+  Progress progress(end_time, !options.quiet, solver->time(), solver->steps());
   RunResult result;
   result.output_dir = dir;
   double step_seconds = 0;
+  long session_steps = 0;
   const auto t_loop = Clock::now();
   try {
-    while (solver->time() < end_time - eps && (options.max_steps <= 0 || solver->steps() < options.max_steps)) {
+    while (solver->time() < end_time - eps && (options.max_steps <= 0 || solver->steps() < options.max_steps) &&
+           !interrupt_signal()) {
       solver->limit_next_dt(end_time - solver->time());
       const auto t0 = Clock::now();
       solver->step();
+      ++session_steps;
       const double seconds = seconds_since(t0);
-      if (solver->steps() > options.warmup_steps) {
+      if (session_steps > options.warmup_steps) {
         step_seconds += seconds;
         status.step_times.push_back(seconds);
-      } else if (solver->steps() == options.warmup_steps) {
+      } else if (session_steps == options.warmup_steps) {
         solver->reset_timers();
       }
       const double t = solver->time();
-      const bool last = t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps);
-      const bool snap = t >= next_output - eps || last;
-      if (snap || t >= next_probe - eps) write_outputs(snap);
-      next_probe = next_multiple(next_probe, scene.output.probe_interval, t + eps);
-      next_output = next_multiple(next_output, scene.output.interval, t + eps);
+      // Outputs at their times only (and at the end), the same whether the run
+      // stops early or not: a continued run reproduces the uninterrupted one.
+      const bool snap = t >= at.next_output - eps || t >= end_time - eps;
+      if (snap || t >= at.next_probe - eps) write_outputs(snap);
+      at.next_probe = next_multiple(at.next_probe, scene.output.probe_interval, t + eps);
+      at.next_output = next_multiple(at.next_output, scene.output.interval, t + eps);
+      const bool checkpoint_due = (scene.output.checkpoint_interval > 0 && t >= at.next_checkpoint - eps) ||
+                                  (options.checkpoint_every_minutes > 0 &&
+                                   seconds_since(last_checkpoint_wall) >= 60.0 * options.checkpoint_every_minutes);
+      if (scene.output.checkpoint_interval > 0)
+        at.next_checkpoint = next_multiple(at.next_checkpoint, scene.output.checkpoint_interval, t + eps);
+      const bool stops =
+          t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps) || interrupt_signal();
+      if (checkpoint_due && !stops) write_checkpoint_now();  // a stop writes its own below
       progress.update(t, solver->steps());
     }
-    status.state = "completed";
+    progress.finish();
+    const bool interrupted = interrupt_signal() != 0;
+    // The checkpoint first: a continued run takes the CSVs and the PVD as they
+    // are now, so the stop's last snapshot below is replaced by its own outputs.
+    if (checkpointing || interrupted) write_checkpoint_now();
+    if (last_snapshot_time != solver->time()) write_outputs(true);  // a run stopped early (--max-steps, a signal)
+    if (interrupted) {
+      status.state = "interrupted";
+      result.exit_code = 128 + interrupt_signal();
+      result.message = "interrupted";
+    } else {
+      status.state = "completed";
+    }
   } catch (const NumericalFailure& f) {
     progress.finish();
     status.state = "failed";
@@ -220,7 +323,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   }
   progress.finish();
   status.steps = solver->steps();
-  status.warmup_steps = std::min(options.warmup_steps, status.steps);
+  status.warmup_steps = std::min(options.warmup_steps, session_steps);
   status.simulated_time = solver->time();
   status.step_seconds = step_seconds;
   status.output_seconds = output_seconds;
@@ -230,19 +333,29 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
 
   result.steps = status.steps;
   result.time = status.simulated_time;
+  if (status.state == "interrupted")
+    std::fprintf(stderr,
+                 "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: mfsd run %s "
+                 "--restart %s\n",
+                 solver->time(), solver->steps(), status.checkpoint.c_str(),
+                 doc.source_name.rfind('<', 0) == 0 ? "" : doc.source_name.c_str(), dir.c_str());
   if (!options.quiet) {
     char wall[32];
     format_duration(status.wall_seconds, wall, sizeof wall);
-    const double ps = double(setup.particles) * double(status.steps - status.warmup_steps);
+    const long timed = session_steps - status.warmup_steps;
+    const double ps = double(setup.particles) * double(timed);
     std::printf(
         "mfsd: %s: %ld particles, %ld steps to t = %.6g s in %s (%.3g particle-steps/s; set-up %.2fs, output %.2fs)\n",
         status.state.c_str(), setup.particles, status.steps, status.simulated_time, wall,
         step_seconds > 0 ? ps / step_seconds : 0.0, status.setup_seconds, output_seconds);
+    if (status.checkpoints > 0)
+      std::printf("mfsd: %ld checkpoint(s) in %s/ (%.3g MB each, %.2fs in all)\n", status.checkpoints,
+                  status.checkpoint.c_str(), status.checkpoint_bytes / 1e6, status.checkpoint_seconds);
     const double total = solver->timers().total();
     std::printf("mfsd: stage               share   us/step   ns/particle-step\n");
     for (auto& st : solver->timers().stages())
       std::printf("mfsd:   %-18s %5.1f %%  %8.1f  %8.2f\n", st.first.c_str(), total > 0 ? 100 * st.second / total : 0,
-                  status.steps ? 1e6 * st.second / status.steps : 0.0, ps > 0 ? 1e9 * st.second / ps : 0.0);
+                  session_steps ? 1e6 * st.second / session_steps : 0.0, ps > 0 ? 1e9 * st.second / ps : 0.0);
   }
   return result;
 }

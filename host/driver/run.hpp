@@ -17,18 +17,21 @@ struct RunOptions {
   long warmup_steps = 0;         // steps left out of timing.json (caches, page faults, clocks)
   bool quiet = false;            // no progress and no summary
   std::string command_line;
+  std::string restart;                  // continue from this output or checkpoint folder
+  double checkpoint_every_minutes = 0;  // wall-clock checkpoints (0: none)
 };
 
 struct RunResult {
-  int exit_code = 0;  // 0 ok, 3 numerical failure
+  int exit_code = 0;  // 0 ok, 3 numerical failure, 128 + signal when interrupted (130 SIGINT, 143 SIGTERM)
   long steps = 0;
   double time = 0;
   std::string output_dir;
   std::string message;
 };
 
-// Input problems (SceneError, unavailable backend, unwritable folder) are
-// thrown before the output folder is created.
+// Input problems (SceneError, unavailable backend, unwritable folder, a
+// checkpoint that does not fit: CheckpointError) are thrown before the output
+// folder is created or, for a restart, changed.
 RunResult run_scene(const SceneDocument& doc, const RunOptions& options);
 
 // Creates the folder (and parents) and checks it is writable; throws SceneError.

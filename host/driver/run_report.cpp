@@ -87,6 +87,13 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
   j["steps"] = status.steps;
   j["simulated_time"] = status.simulated_time;
   if (!status.message.empty()) j["message"] = status.message;
+  if (!status.restarted_from.empty())
+    j["restart"] = {{"from", status.restarted_from}, {"time", status.start_time}, {"steps", status.start_steps}};
+  if (status.checkpoints > 0)
+    j["checkpoints"] = {{"written", status.checkpoints},
+                        {"last", status.checkpoint},
+                        {"bytes", status.checkpoint_bytes},
+                        {"seconds", status.checkpoint_seconds}};
   j["written"] = now_iso();
   j["scene"] = doc.resolved;
   write_file_atomically(dir + "/run.json", j.dump(2) + "\n");
@@ -103,7 +110,7 @@ void write_timing_json(const std::string& dir, const SetupReport& setup, const S
   j["step_seconds"] = status.step_seconds;
   j["output_seconds"] = status.output_seconds;
   // Timed steps: all but the first --warmup-steps.
-  const long timed = status.steps - status.warmup_steps;
+  const long timed = status.steps - status.start_steps - status.warmup_steps;  // this session's
   j["warmup_steps"] = status.warmup_steps;
   j["timed_steps"] = timed;
   const double ps = double(setup.particles) * double(timed);

@@ -10,8 +10,14 @@
 namespace mfsd {
 
 struct RunStatus {
-  std::string state;  // running | completed | failed
+  std::string state;  // running | completed | failed | interrupted
   long steps = 0;
+  long start_steps = 0;                                 // a continued run: the checkpoint's step
+  double start_time = 0;                                // and time
+  std::string restarted_from;                           // its checkpoint folder
+  long checkpoints = 0;                                 // written by this run
+  double checkpoint_bytes = 0, checkpoint_seconds = 0;  // the last one's size; all of them's time
+  std::string checkpoint;                               // the folder of the last one
   double simulated_time = 0;
   std::string message;
   double setup_seconds = 0, step_seconds = 0, output_seconds = 0, wall_seconds = 0;

@@ -9,6 +9,15 @@ namespace mfsd {
 
 void PvdIndex::add(double time, const std::string& relative_file) {
   entries_.emplace_back(time, relative_file);
+  write();
+}
+
+void PvdIndex::restore(std::vector<Entry> entries) {
+  entries_ = std::move(entries);
+  write();
+}
+
+void PvdIndex::write() const {
   std::ostringstream s;
   s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
     << "  <Collection>\n";

@@ -3,6 +3,7 @@
 // backend's memory space; vector and tensor fields are arrays of Vec/Mat.
 // Bodies are index ranges [begin, end) of one set.
 #pragma once
+#include <cstring>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/particles/state_archive.hpp"
 
 namespace mfsd {
 
@@ -71,6 +73,19 @@ class ParticleSet {
     return s;
   }
 
+  // Every field's bytes as "field/<name>" (checkpoints).
+  void save(StateArchive& archive) const {
+    for (auto& kv : fields_) archive.put_bytes("field/" + kv.first, kv.second->save());
+  }
+  // Every registered field from the archive, which must hold each with the
+  // same size; fields the archive has and this set lacks are a mismatch too.
+  void restore(const StateArchive& archive) {
+    for (auto& kv : fields_) kv.second->restore(archive.bytes("field/" + kv.first), kv.first);
+    for (auto& kv : archive.blobs())
+      if (kv.first.rfind("field/", 0) == 0 && !has(kv.first.substr(6)))
+        throw StateMismatch("the checkpoint has particle field '" + kv.first.substr(6) + "', which this run does not");
+  }
+
   // Reorders every field: new[k] = old[perm[k]]. Ids travel with the data, so
   // outputs still name particles by their original index.
   void permute(const DeviceVector<B, Index>& perm) {
@@ -84,6 +99,8 @@ class ParticleSet {
     virtual void permute(const DeviceVector<B, Index>& perm) = 0;
     virtual size_t bytes() const = 0;
     virtual const std::type_info& type() const = 0;
+    virtual std::string save() const = 0;
+    virtual void restore(const std::string& bytes, const std::string& name) = 0;
   };
   template <class T>
   struct Field final : FieldBase {
@@ -96,6 +113,18 @@ class ParticleSet {
     }
     size_t bytes() const override { return data.size() * sizeof(T); }
     const std::type_info& type() const override { return typeid(T); }
+    std::string save() const override {
+      const std::vector<T> h = to_host<B>(data);
+      return std::string(reinterpret_cast<const char*>(h.data()), h.size() * sizeof(T));
+    }
+    void restore(const std::string& bytes, const std::string& name) override {
+      if (bytes.size() != data.size() * sizeof(T))
+        throw StateMismatch("checkpoint field '" + name + "' holds " + std::to_string(bytes.size()) +
+                            " bytes, this run's " + std::to_string(data.size() * sizeof(T)));
+      std::vector<T> h(data.size());
+      if (!bytes.empty()) std::memcpy(static_cast<void*>(h.data()), bytes.data(), bytes.size());
+      from_host<B>(h, data);
+    }
   };
 
   FieldBase& find(const std::string& name) const {

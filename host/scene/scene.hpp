@@ -194,7 +194,12 @@ struct OutputSpec {
   double interval = 0;        // VTU snapshots and energies
   double probe_interval = 0;  // probes.csv rows
   bool vtu = true;
+  double checkpoint_interval = 0;  // simulated time between checkpoints; 0: none
 };
+
+// Above these counts a scene is accepted with a warning (scene.warnings).
+constexpr double kManySnapshots = 1e5;
+constexpr double kManyRows = 1e8;
 
 struct Scene {
   std::string name;

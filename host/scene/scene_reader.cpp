@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -406,7 +407,23 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     scene.output.interval = out.number("interval", scene.solver.end_time / 100.0, interval);
     scene.output.probe_interval = out.number("probe_interval", scene.output.interval / 20.0, interval);
     scene.output.vtu = out.boolean("vtu", true);
+    // Checkpoints every checkpoint_interval of simulated time (0: none).
+    scene.output.checkpoint_interval = out.number("checkpoint_interval", 0.0, Range::non_negative());
+    if (scene.output.checkpoint_interval > 0 && scene.output.checkpoint_interval < shortest)
+      throw SceneError("/output/checkpoint_interval", std::to_string(scene.output.checkpoint_interval),
+                       "0 (no checkpoints) or an interval of at least end_time / 1e9");
     out.finish();
+    // Legal but heavy: say how much a run will write before it starts.
+    const double snapshots = scene.solver.end_time / scene.output.interval;
+    const double rows = scene.solver.end_time / scene.output.probe_interval;
+    std::ostringstream w;
+    if (scene.output.vtu && snapshots > kManySnapshots)
+      w << "/output/interval: the run writes about " << std::setprecision(3) << snapshots
+        << " snapshots (VTU files); more than " << kManySnapshots << " is rarely meant";
+    else if (rows > kManyRows)
+      w << "/output/probe_interval: the run writes about " << std::setprecision(3) << rows
+        << " rows per CSV file; more than " << kManyRows << " is rarely meant";
+    if (!w.str().empty()) scene.warnings.push_back(w.str());
   }
 
   // Bounds: default = the bodies' bounding box grown by its size on every side.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "host/particles/state_archive.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene.hpp"
 #include "host/solver/stage_timers.hpp"
@@ -131,6 +132,12 @@ class Solver {
   virtual const StageTimers& timers() const = 0;
   virtual void reset_timers() = 0;  // after warm-up steps
   virtual SetupReport setup_report() const = 0;
+  // Everything a continued run needs to reproduce the uninterrupted one bit
+  // for bit (checkpoints): every particle field, time, step and dt, and the
+  // accumulators and generators of its parts. restore_state() follows
+  // initialize() and throws StateMismatch when the archive does not fit.
+  virtual void save_state(StateArchive& archive) = 0;
+  virtual void restore_state(const StateArchive& archive) = 0;
 };
 
 struct SolverOptions {

@@ -166,6 +166,22 @@ class TlsphConditions {
     for (auto& k : clamps_) clamp(k, v, dt);
   }
 
+  // The work sums and the last step's forces (checkpoints).
+  void save(StateArchive& a) const {
+    a.put("conditions/external_work", body_external_work_);
+    a.put("conditions/boundary_work", body_boundary_work_);
+    a.put("conditions/forces", force_list());
+  }
+  void restore(const StateArchive& a) {
+    body_external_work_ = a.get<double>("conditions/external_work", long(body_external_work_.size()));
+    body_boundary_work_ = a.get<double>("conditions/boundary_work", long(body_boundary_work_.size()));
+    const std::vector<Point3> f = a.get<Point3>("conditions/forces", long(force_list().size()));
+    size_t k = 0;
+    for (auto& c : clamps_) c.force = f[k++];
+    for (auto& c : conditions_) c->force = f[k++];
+    for (auto& w : walls_) w.force = f[k++];
+  }
+
   double external_work(size_t body) const { return body_external_work_[body]; }
   double boundary_work(size_t body) const { return body_boundary_work_[body]; }
 
@@ -179,6 +195,12 @@ class TlsphConditions {
   }
 
  private:
+  std::vector<Point3> force_list() const {
+    std::vector<Point3> f;
+    for (auto& s : forces()) f.push_back(s.force);
+    return f;
+  }
+
   struct Clamp {
     std::string name;
     size_t body = 0;

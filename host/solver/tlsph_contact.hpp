@@ -156,6 +156,18 @@ class TlsphContact {
   // 1 / the largest stable step of the last step's contacts (0 without
   // contacts; contact_force.hpp).
   double inverse_stable_step() const { return inverse_step_; }
+  // The work sums, the rigid bodies' last forces and the contact step bound (checkpoints).
+  void save(StateArchive& a) const {
+    a.put("contact/work", work_);
+    a.put("contact/rigid_force", rigid_force_);
+    a.put_value("contact/inverse_step", inverse_step_);
+  }
+  void restore(const StateArchive& a) {
+    work_ = a.get<double>("contact/work", long(work_.size()));
+    rigid_force_ = a.get<Point3>("contact/rigid_force", long(rigid_force_.size()));
+    inverse_step_ = a.get_value<double>("contact/inverse_step");
+  }
+
   double work(size_t body) const { return enabled_ ? work_[body] : 0.0; }
 
   // The force each rigid body in contact exerts on the bodies, last step.

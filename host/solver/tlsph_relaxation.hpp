@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <random>
+#include <sstream>
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
@@ -81,15 +82,16 @@ class TlsphRelaxation {
     for (size_t k = 0; k < entries.size(); ++k) {
       const Entry& e = entries[k];
       particle.push_back(e.particle);
-      const bool last = k + 1 == entries.size() || entries[k + 1].colour != e.colour ||
-                        entries[k + 1].body != e.body || entries[k + 1].cell != e.cell;
+      const bool last = k + 1 == entries.size() || entries[k + 1].colour != e.colour || entries[k + 1].body != e.body ||
+                        entries[k + 1].cell != e.cell;
       if (!last) continue;
       offset.push_back(Index(particle.size()));
       item_density.push_back(Real(density[size_t(e.body)]));
       item_viscosity.push_back(Real(viscosity[size_t(e.body)]));
       colour_first_[size_t(e.colour) + 1] = ++items;
     }
-    for (int c = 1; c <= kColours; ++c) colour_first_[size_t(c)] = std::max(colour_first_[size_t(c)], colour_first_[size_t(c) - 1]);
+    for (int c = 1; c <= kColours; ++c)
+      colour_first_[size_t(c)] = std::max(colour_first_[size_t(c)], colour_first_[size_t(c) - 1]);
     from_host<B>(offset, item_offset_);
     from_host<B>(particle, item_particle_);
     host_offset_ = offset;
@@ -120,20 +122,35 @@ class TlsphRelaxation {
                                       true};
     for (int c = 0; c < kColours; ++c) parallel_for<B>(colour_first_[size_t(c)], colour_first_[size_t(c) + 1], f);
     f.forward = false;
-    for (int c = kColours - 1; c >= 0; --c)
-      parallel_for<B>(colour_first_[size_t(c)], colour_first_[size_t(c) + 1], f);
+    for (int c = kColours - 1; c >= 0; --c) parallel_for<B>(colour_first_[size_t(c)], colour_first_[size_t(c) + 1], f);
     for (size_t b = 0; b < ranges_.size(); ++b)
-      dissipation_[b] += transform_reduce<B>(
-          ranges_[b].begin, ranges_[b].end,
-          RelaxationWorkFunctor<D, Real>{raw(before_), view.velocity, view.acceleration, view.volume,
-                                         Real(density_[b]), Real(dt)},
-          0.0, thrust::plus<double>{});
+      dissipation_[b] +=
+          transform_reduce<B>(ranges_[b].begin, ranges_[b].end,
+                              RelaxationWorkFunctor<D, Real>{raw(before_), view.velocity, view.acceleration,
+                                                             view.volume, Real(density_[b]), Real(dt)},
+                              0.0, thrust::plus<double>{});
   }
 
   // Energy the relaxation took from body b so far, J (2-D: per metre of depth).
   double dissipation(size_t b) const { return dissipation_[b]; }
 
   long relaxed_steps() const { return relaxed_steps_; }
+
+  // The random generator's state, the dissipation sums and the count (checkpoints).
+  void save(StateArchive& a) const {
+    std::ostringstream engine;
+    engine << random_;
+    a.put_bytes("relaxation/random", engine.str());
+    a.put("relaxation/dissipation", dissipation_);
+    a.put_value("relaxation/relaxed_steps", relaxed_steps_);
+  }
+  void restore(const StateArchive& a) {
+    std::istringstream engine(a.bytes("relaxation/random"));
+    engine >> random_;
+    if (!engine) throw StateMismatch("checkpoint part 'relaxation/random' is not a generator state");
+    dissipation_ = a.get<double>("relaxation/dissipation", long(dissipation_.size()));
+    relaxed_steps_ = a.get_value<long>("relaxation/relaxed_steps");
+  }
 
   // The particles of each cell of colour c (tests check that they touch disjoint particles).
   std::vector<std::vector<Index>> items_of_colour(int c) const {

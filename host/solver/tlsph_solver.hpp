@@ -360,6 +360,33 @@ class TlsphSolver final : public Solver {
     clock_.collect(timers_);
   }
 
+  void save_state(StateArchive& a) override {
+    particles_.save(a);
+    a.put_value("solver/time", time_);
+    a.put_value("solver/dt_next", dt_next_);
+    a.put_value("solver/steps", steps_);
+    a.put("solver/gravity_at_start", gravity_at_start_);
+    conditions_.save(a);
+    contact_.save(a);
+    relaxation_.save(a);
+  }
+
+  void restore_state(const StateArchive& a) override {
+    // The particle order comes from the reference search; a checkpoint of
+    // another order (another backend's sort) cannot be restored field by field.
+    if (a.get<Index>("field/" + std::string(field::id), long(particles_.size())) !=
+        to_host<B>(particles_.template buffer<Index>(field::id)))
+      throw StateMismatch("the checkpoint's particle order differs from this run's (another backend?)");
+    particles_.restore(a);
+    time_ = a.get_value<double>("solver/time");
+    dt_next_ = a.get_value<double>("solver/dt_next");
+    steps_ = a.get_value<long>("solver/steps");
+    gravity_at_start_ = a.get<double>("solver/gravity_at_start", long(bodies_.size()));
+    conditions_.restore(a);
+    contact_.restore(a);
+    relaxation_.restore(a);
+  }
+
   void limit_next_dt(double dt_max) override { dt_next_ = std::min(dt_next_, dt_max); }
   double time() const override { return time_; }
   double next_dt() const override { return dt_next_; }
