@@ -31,4 +31,13 @@ std::string cuda_device_name() {
   return p.name;
 }
 
+double cuda_device_free_bytes() {
+  size_t free = 0, total = 0;
+  if (cuda_device_count() == 0 || cudaMemGetInfo(&free, &total) != cudaSuccess) {
+    cudaGetLastError();
+    return 0;
+  }
+  return double(free);
+}
+
 }  // namespace mfsd

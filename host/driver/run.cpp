@@ -26,6 +26,7 @@
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/rigid_body.hpp"
 #include "host/scene/scene_error.hpp"
+#include "host/solver/memory_estimate.hpp"
 #include "host/solver/numerical_failure.hpp"
 
 namespace mfsd {
@@ -115,6 +116,9 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     saved = read_checkpoint(restart->folder);
   }
   const InitialParticles particles = generate_particles(scene);
+  std::vector<long> body_particles;
+  for (const auto& r : particles.body_range) body_particles.push_back(long(r.end - r.begin));
+  check_run_memory(scene, body_particles, options.solver.precision, options.solver.backend);
   std::unique_ptr<Solver> solver = make_solver(scene, particles, options.solver);
 
   const std::string dir =

@@ -154,5 +154,6 @@ std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& 
 bool cuda_compiled();
 int cuda_device_count();
 std::string cuda_device_name();
+double cuda_device_free_bytes();  // of device 0; 0 without one
 
 }  // namespace mfsd
