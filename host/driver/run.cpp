@@ -87,6 +87,14 @@ void remove_previous_outputs(const std::string& dir) {
       fs::remove(e.path());
 }
 
+// Files a killed run was writing (written under .tmp, then renamed).
+void remove_partial_files(const std::string& dir) {
+  for (const fs::path d : {fs::path(dir), fs::path(dir) / "snapshots"})
+    if (fs::is_directory(d))
+      for (auto& e : fs::directory_iterator(d))
+        if (e.path().extension() == ".tmp") fs::remove(e.path());
+}
+
 }  // namespace
 
 void prepare_output_dir(const std::string& dir) {
@@ -130,6 +138,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   const bool existed = fs::exists(dir);
   prepare_output_dir(dir);
   if (existed && !restart) remove_previous_outputs(dir);
+  if (restart) remove_partial_files(dir);
   fs::create_directories(fs::path(dir) / "snapshots");
 
   RunStatus status;
@@ -171,7 +180,11 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       auto it = restart->position.csv_bytes.find(name);
       if (it == restart->position.csv_bytes.end())
         throw CheckpointError("checkpoint " + restart->folder + " does not know " + name);
-      w = std::make_unique<CsvWriter>(dir + "/" + name, columns, it->second);
+      try {
+        w = std::make_unique<CsvWriter>(dir + "/" + name, columns, it->second);
+      } catch (const std::runtime_error& e) {
+        throw CheckpointError(std::string(e.what()) + " (continuing " + restart->folder + ")");
+      }
     } else {
       w = std::make_unique<CsvWriter>(dir + "/" + name, columns);
     }

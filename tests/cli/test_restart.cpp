@@ -154,6 +154,9 @@ TEST_F(Restart, RelaxationContinuesBitForBit) {
                             133);
 }
 
+// The phase field, its history and rate are particle fields like the others.
+TEST_F(Restart, FractureContinuesBitForBit) { expect_restart_reproduces(scene("notched_bar_2d.json"), "", 301); }
+
 // SIGINT: the step ends, a checkpoint and a last snapshot are written, run.json
 // says "interrupted", exit 130; --restart then ends where the uninterrupted
 // run ends, with the same files.
