@@ -45,6 +45,8 @@ const char* kUsage =
     "                          --set bodies.plate.material.poisson_ratio=0.4 (repeatable)\n"
     "  --max-steps N           stop after N steps\n"
     "  --warmup-steps N        leave the first N steps out of timing.json (benchmarks)\n"
+    "  --genog-record packed|scalar  3-D genog on cpu: packed neighbour record (default) or the\n"
+    "                          scalar path the GPU takes\n"
     "  --checkpoint-every MIN  write a checkpoint every MIN minutes of wall time (also: output.checkpoint_interval)\n"
     "  --restart DIR           continue the run whose output (or checkpoint) folder is DIR, in that folder\n"
     "  -q, --quiet             no progress line and no summary\n"
@@ -94,7 +96,8 @@ int command_run(int argc, char** argv, const std::string& command_line) {
       "threads", "", cxxopts::value<int>())("precision", "", cxxopts::value<std::string>())(
       "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
       "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>())(
-      "restart", "", cxxopts::value<std::string>())("checkpoint-every", "", cxxopts::value<double>());
+      "restart", "", cxxopts::value<std::string>())("checkpoint-every", "", cxxopts::value<double>())(
+      "genog-record", "", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");
@@ -129,6 +132,11 @@ int command_run(int argc, char** argv, const std::string& command_line) {
     if (o.warmup_steps < 0) throw UsageError("--warmup-steps: expected N >= 0");
   }
   o.quiet = r.count("quiet") > 0;
+  if (r.count("genog-record")) {
+    const std::string g = r["genog-record"].as<std::string>();
+    if (g != "packed" && g != "scalar") throw UsageError("--genog-record " + g + ": expected packed or scalar");
+    o.solver.packed_genog_record = g == "packed";
+  }
   if (r.count("checkpoint-every")) {
     o.checkpoint_every_minutes = r["checkpoint-every"].as<double>();
     if (!(o.checkpoint_every_minutes > 0) || !std::isfinite(o.checkpoint_every_minutes))

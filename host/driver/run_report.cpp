@@ -60,6 +60,8 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
                      : 0;
   j["precision"] = to_string(options.solver.precision);
   j["dimension"] = doc.scene.dimension;
+  if (doc.scene.dimension == 3 && doc.scene.solver.hourglass == HourglassControl::genog)
+    j["genog_record"] = options.solver.backend == "cpu" && options.solver.packed_genog_record ? "packed" : "scalar";
   j["particles"] = setup.particles;
   Json bodies = Json::array();
   for (size_t b = 0; b < doc.scene.bodies.size(); ++b) {

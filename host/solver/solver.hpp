@@ -144,6 +144,10 @@ struct SolverOptions {
   std::string backend = "cpu";
   int threads = 0;  // 0 = OpenMP default
   Precision precision = Precision::double_precision;
+  // 3-D genog on the CPU: the packed neighbour record of the vectorized force
+  // loop (kernels/tlsph/genog_neighbor_record.hpp); false takes the scalar
+  // path the GPU always takes (tests compare the two).
+  bool packed_genog_record = true;
 };
 
 // Factory: picks the instantiation for backend x precision x dimension.

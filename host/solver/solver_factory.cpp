@@ -5,8 +5,9 @@
 
 namespace mfsd {
 
-#define MFSD_DECLARE(backend, dim, real) \
-  std::unique_ptr<Solver> make_tlsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&);
+#define MFSD_DECLARE(backend, dim, real)                                                                \
+  std::unique_ptr<Solver> make_tlsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
+                                                                 const SolverOptions&);
 MFSD_DECLARE(cpu, 2, float)
 MFSD_DECLARE(cpu, 2, double)
 MFSD_DECLARE(cpu, 3, float)
@@ -24,16 +25,16 @@ std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& 
   const int d = scene.dimension;
   if (o.backend == "cpu") {
     if (o.threads > 0) omp_set_num_threads(o.threads);
-    if (d == 2) return single ? make_tlsph_cpu_2d_float(scene, p) : make_tlsph_cpu_2d_double(scene, p);
-    return single ? make_tlsph_cpu_3d_float(scene, p) : make_tlsph_cpu_3d_double(scene, p);
+    if (d == 2) return single ? make_tlsph_cpu_2d_float(scene, p, o) : make_tlsph_cpu_2d_double(scene, p, o);
+    return single ? make_tlsph_cpu_3d_float(scene, p, o) : make_tlsph_cpu_3d_double(scene, p, o);
   }
   if (o.backend == "cuda") {
 #if defined(MFSD_WITH_CUDA)
     if (cuda_device_count() <= 0)
       throw UsageError("--backend cuda: this machine has no usable CUDA device (" + cuda_device_name() +
                        "); use --backend cpu");
-    if (d == 2) return single ? make_tlsph_cuda_2d_float(scene, p) : make_tlsph_cuda_2d_double(scene, p);
-    return single ? make_tlsph_cuda_3d_float(scene, p) : make_tlsph_cuda_3d_double(scene, p);
+    if (d == 2) return single ? make_tlsph_cuda_2d_float(scene, p, o) : make_tlsph_cuda_2d_double(scene, p, o);
+    return single ? make_tlsph_cuda_3d_float(scene, p, o) : make_tlsph_cuda_3d_double(scene, p, o);
 #else
     throw UsageError(
         "--backend cuda: this mfsd binary was built without CUDA (no nvcc at build time); "

@@ -136,8 +136,8 @@ struct ReadScalarReal {
 template <class B, int D, class Real>
 class TlsphSolver final : public Solver {
  public:
-  TlsphSolver(const Scene& scene, const InitialParticles& init)
-      : scene_(scene), init_(init), particles_(Index(init.size())) {
+  TlsphSolver(const Scene& scene, const InitialParticles& init, const SolverOptions& options)
+      : scene_(scene), init_(init), options_(options), particles_(Index(init.size())) {
     for (const auto& p : scene.probes)
       for (const auto& f : p.fields)
         probes_need_stress_ =
@@ -197,7 +197,8 @@ class TlsphSolver final : public Solver {
     if (scene_.solver.hourglass == HourglassControl::laplacian) particles_.template add<Real>(field::shear_coefficient);
     if (scene_.solver.hourglass == HourglassControl::genog) particles_.template add<Mat<D, Real>>(field::shear_stress);
     // The packed neighbour record of the vectorized CPU force loop (3-D genog).
-    if (scene_.solver.hourglass == HourglassControl::genog && D == 3 && std::is_same<B, Cpu>::value)
+    if (scene_.solver.hourglass == HourglassControl::genog && D == 3 && std::is_same<B, Cpu>::value &&
+        options_.packed_genog_record)
       particles_.template add<GenogNeighborRecord<Real>>(field::genog_neighbor_record);
     particles_.template add<Real>(field::hourglass_indicator);
     particles_.template add<Real>(field::von_mises);
@@ -817,6 +818,7 @@ class TlsphSolver final : public Solver {
 
   Scene scene_;
   InitialParticles init_;
+  SolverOptions options_;
   std::vector<BodyProperties> props_;
   ParticleSet<B> particles_;
   ReferenceNeighborList<B, D, Real> pairs_;
