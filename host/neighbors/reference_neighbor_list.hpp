@@ -21,6 +21,7 @@ struct ReferenceNeighborList {
   DeviceVector<B, Vec<D, Real>> grad;
   DeviceVector<B, Real> stretch, beta;
   DeviceVector<B, Vec<D, Real>> gradient_sum;  // per particle
+  std::int64_t cells = 0;                      // of the search's grids (set-up memory: 2 indices each)
 
   PairIndex pairs() const { return PairIndex(grad.size()); }
 
@@ -35,9 +36,9 @@ struct BodySearch {
   double smoothing_length;  // support radius = 2 h
 };
 
-// Builds the grid over [lo, hi] with cells of edge `cell_size` for `bodies` bodies.
+// The grid over [lo, hi] with cells of edge `cell_size`, its keys from `first_key`.
 template <int D>
-CellGrid<D> make_cell_grid(const double* lo, const double* hi, double cell_size, int bodies) {
+CellGrid<D> make_cell_grid(const double* lo, const double* hi, double cell_size, std::int64_t first_key = 0) {
   CellGrid<D> g;
   g.inv_cell_size = 1.0 / cell_size;
   std::int64_t cells = 1;
@@ -46,8 +47,8 @@ CellGrid<D> make_cell_grid(const double* lo, const double* hi, double cell_size,
     g.dims[a] = std::max(1, int(std::floor((hi[a] - g.origin[a]) / cell_size)) + 1);
     cells *= g.dims[a];
   }
-  g.cells_per_body = cells;
-  (void)bodies;
+  g.cells = cells;
+  g.first_key = first_key;
   return g;
 }
 
@@ -62,32 +63,40 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
                                                                 bool with_beta,
                                                                 const std::vector<Notch<D>>& notches = {}) {
   const Index n = particles.size();
-  // Grid over the reference bounding box, cell edge = the largest support radius.
+  // One grid per body over its own bounding box, cell edge = its support
+  // radius: memory follows the bodies' volumes, not the space between them.
   const auto host_x = to_host<B>(particles.template buffer<Vec<D, double>>(field::reference_position_double));
-  double lo[D], hi[D];
-  for (int a = 0; a < D; ++a) {
-    lo[a] = hi[a] = n ? host_x[0].v[a] : 0.0;
-    for (const auto& x : host_x) lo[a] = std::min(lo[a], x.v[a]), hi[a] = std::max(hi[a], x.v[a]);
+  std::vector<CellGrid<D>> host_grids;
+  std::int64_t cells = 0;
+  for (const auto& b : bodies) {
+    double lo[D], hi[D];
+    for (int a = 0; a < D; ++a) {
+      lo[a] = hi[a] = b.range.size() ? host_x[size_t(b.range.begin)].v[a] : 0.0;
+      for (Index i = b.range.begin; i < b.range.end; ++i)
+        lo[a] = std::min(lo[a], host_x[size_t(i)].v[a]), hi[a] = std::max(hi[a], host_x[size_t(i)].v[a]);
+    }
+    host_grids.push_back(make_cell_grid<D>(lo, hi, 2.0 * b.smoothing_length, cells));
+    cells += host_grids.back().cells;
   }
-  double radius = 0;
-  for (const auto& b : bodies) radius = std::max(radius, 2.0 * b.smoothing_length);
-  const CellGrid<D> grid = make_cell_grid<D>(lo, hi, radius, int(bodies.size()));
+  DeviceVector<B, CellGrid<D>> grids;
+  from_host<B>(host_grids, grids);
 
   DeviceVector<B, std::int64_t> keys(static_cast<size_t>(n));
   DeviceVector<B, Index> order(static_cast<size_t>(n));
   sequence<B, Index>(order);
-  parallel_for<B>(n, CellKeyFunctor<D>{grid, particles.template get<Vec<D, double>>(field::reference_position_double),
-                                       particles.template get<int>(field::body), raw(keys)});
+  parallel_for<B>(
+      n, CellKeyFunctor<D>{raw(grids), particles.template get<Vec<D, double>>(field::reference_position_double),
+                           particles.template get<int>(field::body), raw(keys)});
   sort_by_key<B, std::int64_t, Index>(keys, order);
   if (reorder) {
     particles.permute(order);
     sequence<B, Index>(order);
   }
-  DeviceVector<B, Index> start(size_t(grid.cells_per_body) * bodies.size(), 0);
-  DeviceVector<B, Index> end(size_t(grid.cells_per_body) * bodies.size(), 0);
+  DeviceVector<B, Index> start(size_t(cells), 0);
+  DeviceVector<B, Index> end(size_t(cells), 0);
   parallel_for<B>(n, CellRangeFunctor{raw(keys), n, raw(start), raw(end)});
 
-  CellNeighborhood<D> hood{grid,
+  CellNeighborhood<D> hood{raw(grids),
                            particles.template get<Vec<D, double>>(field::reference_position_double),
                            particles.template get<int>(field::body),
                            raw(start),
@@ -106,6 +115,7 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
     parallel_for<B>(b.range.begin, b.range.end, NeighborCountFunctor<D>{hood, raw(count)});
   }
   ReferenceNeighborList<B, D, Real> list;
+  list.cells = cells;
   list.offsets.resize(size_t(n) + 1);
   const PairIndex total = exclusive_scan<B, Index, PairIndex>(count, list.offsets);
   list.offsets[size_t(n)] = total;

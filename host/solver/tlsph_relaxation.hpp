@@ -51,7 +51,7 @@ class TlsphRelaxation {
       lo[a] = hi[a] = position.empty() ? 0.0 : double(position[0].v[a]);
       for (const auto& x : position) lo[a] = std::min(lo[a], double(x.v[a])), hi[a] = std::max(hi[a], double(x.v[a]));
     }
-    const CellGrid<D> grid = make_cell_grid<D>(lo, hi, support, int(ranges.size()));
+    const CellGrid<D> grid = make_cell_grid<D>(lo, hi, support);  // coordinates only: no storage per cell
     struct Entry {
       int colour;
       int body;

@@ -1,8 +1,10 @@
-// Cell-list neighbour search (design.md, "Neighbour search"): cell edge =
-// search radius; particles sorted by (body, cell) key; each key's [start, end)
-// found from the sorted keys; neighbours counted, scanned into CSR offsets and
-// filled. Only particles of the same body are neighbours (bodies interact by
-// contact, not through the reference list).
+// Cell-list neighbour search (design.md, "Neighbour search"): one grid per
+// body over its own bounding box, cell edge = its search radius; particles
+// sorted by key = the body's first key + the cell's index; each key's
+// [start, end) found from the sorted keys; neighbours counted, scanned into
+// CSR offsets and filled. Only particles of the same body are neighbours
+// (bodies interact by contact, not through the reference list), so bodies far
+// apart cost no cells between them.
 #pragma once
 #include "kernels/core/vec.hpp"
 #include "kernels/fracture/notch.hpp"
@@ -14,7 +16,8 @@ struct CellGrid {
   double origin[D];
   double inv_cell_size;
   int dims[D];
-  std::int64_t cells_per_body;
+  std::int64_t cells;      // dims[0] x ... x dims[D-1]
+  std::int64_t first_key;  // keys of this grid: [first_key, first_key + cells)
 
   MFSD_HD int coordinate(int axis, double x) const {
     int c = int(math::floor((x - origin[axis]) * inv_cell_size));
@@ -27,18 +30,19 @@ struct CellGrid {
   }
 };
 
-// key_i = body_i * cells_per_body + cell(X_i)
+// key_i = first key of body_i's grid + cell(X_i)
 template <int D>
 struct CellKeyFunctor {
-  CellGrid<D> grid;
+  const CellGrid<D>* grids;  // per body
   const Vec<D, double>* position;
   const int* body;
   std::int64_t* key;
 
   MFSD_HD void operator()(Index i) const {
+    const CellGrid<D>& grid = grids[body[i]];
     int c[D];
     for (int a = 0; a < D; ++a) c[a] = grid.coordinate(a, position[i].v[a]);
-    key[i] = std::int64_t(body[i]) * grid.cells_per_body + grid.linear(c);
+    key[i] = grid.first_key + grid.linear(c);
   }
 };
 
@@ -61,7 +65,7 @@ struct CellRangeFunctor {
 // (j, X_i - X_j, |X_i - X_j|).
 template <int D>
 struct CellNeighborhood {
-  CellGrid<D> grid;
+  const CellGrid<D>* grids;  // per body
   const Vec<D, double>* position;
   const int* body;
   const Index* start;
@@ -73,13 +77,14 @@ struct CellNeighborhood {
   template <class Visitor>
   MFSD_HD void for_each(Index i, Visitor& visit) const {
     const Vec<D, double> xi = position[i];
+    const CellGrid<D>& grid = grids[body[i]];
     int c[D], lo[D], hi[D];
     for (int a = 0; a < D; ++a) {
       c[a] = grid.coordinate(a, xi.v[a]);
       lo[a] = c[a] > 0 ? c[a] - 1 : 0;
       hi[a] = c[a] + 1 < grid.dims[a] ? c[a] + 1 : grid.dims[a] - 1;
     }
-    const std::int64_t base = std::int64_t(body[i]) * grid.cells_per_body;
+    const std::int64_t base = grid.first_key;
     int cc[D];
     if constexpr (D == 2) {
       for (cc[1] = lo[1]; cc[1] <= hi[1]; ++cc[1])

@@ -104,3 +104,33 @@ TEST(NeighborSearch, FullSupportCountOnLattice) {
       EXPECT_EQ(offsets[k + 1] - offsets[k], expected);
     }
 }
+
+// Two small bodies 1,000 body-lengths apart (issue 20, item 7): each body has
+// its own grid, so the search holds cells for the bodies only (a grid over the
+// union box would need 1000^3 times more), and the pairs are the oracle's.
+TEST(NeighborSearch, BodiesFarApartCostOnlyTheirOwnCells) {
+  const int n[3] = {6, 5, 4};
+  const double dp = 0.1, h = 1.15 * dp, length = 0.6;
+  auto x = test::lattice<3>(n, dp, 0.1, 3);
+  const size_t n0 = x.size();
+  auto x2 = test::lattice<3>(n, dp, 0.1, 4);
+  for (auto& p : x2)
+    for (int a = 0; a < 3; ++a) p.v[a] += 1000 * length;
+  x.insert(x.end(), x2.begin(), x2.end());
+  std::vector<int> body(x.size(), 0);
+  std::fill(body.begin() + long(n0), body.end(), 1);
+  test::Fixture<3, double> f(x, dp, h, true, body);
+  // Each body's box is at most 3 x 3 x 2 cells of edge 2h = 0.23.
+  EXPECT_LE(f.pairs.cells, 2 * 3 * 3 * 2);
+  const auto ids = f.template host<Index>(field::id);
+  const auto offsets = to_host<Cpu>(f.pairs.offsets);
+  const auto nb = to_host<Cpu>(f.pairs.neighbor);
+  for (size_t k = 0; k < x.size(); ++k) {
+    const size_t i = size_t(ids[k]);
+    std::set<size_t> oracle, found;
+    for (size_t j = 0; j < x.size(); ++j)
+      if (j != i && body[j] == body[i] && norm(x[i] - x[j]) < 2 * h) oracle.insert(j);
+    for (PairIndex p = offsets[k]; p < offsets[k + 1]; ++p) found.insert(size_t(ids[size_t(nb[size_t(p)])]));
+    EXPECT_EQ(found, oracle) << "particle " << i;
+  }
+}
