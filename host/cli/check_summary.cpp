@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "host/scene/body_properties.hpp"
@@ -41,6 +42,22 @@ std::vector<Point3> initial_velocities(const Scene& s, const InitialParticles& P
   return v;
 }
 
+// A count estimated in double: whole below 1e15, else 3 significant digits
+// (never through an integer conversion, which overflows).
+std::string count_text(double n) {
+  std::ostringstream o;
+  if (std::isfinite(n) && std::abs(n) < 1e15)
+    o << std::fixed << std::setprecision(0) << std::round(n);
+  else if (std::isfinite(n))
+    o << std::setprecision(3) << n;
+  else
+    o << "infinitely many";
+  return o.str();
+}
+
+// More steps than a run ends in (1e9 steps of one particle take hours).
+constexpr double kManySteps = 1e9;
+
 }  // namespace
 
 std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
@@ -68,7 +85,7 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
     if (r.t_end < 1e299) o << " to " << r.t_end << " s";
     o << "; clamped and velocity-condition particles held\n";
   }
-  double dt = 1e300;
+  double dt = 1e300, vmax_all = 0;
   for (size_t b = 0; b < s.bodies.size(); ++b) {
     const BodySpec& body = s.bodies[b];
     const BodyProperties p = body_properties(body, s.solver, s.dimension);
@@ -79,6 +96,7 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
       vmax = std::max(vmax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
     }
     dt = std::min(dt, s.solver.cfl * p.h / (p.c0 + vmax));
+    vmax_all = std::max(vmax_all, vmax);
     o << "  body '" << body.name << "': " << n << " particles (" << P.constrained_count[b] << " clamped), "
       << to_string(body.material.model) << ", rho0 " << body.material.density << ", E " << body.material.youngs_modulus
       << ", nu " << body.material.poisson_ratio << ", dp " << body.spacing << ", h " << p.h << ", c0 " << p.c0
@@ -128,9 +146,13 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
     o << ")\n";
   }
   const double steps = s.solver.end_time / dt;
-  o << "  initial time step " << dt << " s, about " << std::llround(steps) << " steps, "
-    << std::llround(steps * double(P.size()) / 1e6) << " million particle-steps; "
-    << std::llround(s.solver.end_time / s.output.interval) << " snapshots\n";
+  o << "  initial time step " << dt << " s, about " << count_text(steps) << " steps, "
+    << count_text(steps * double(P.size()) / 1e6) << " million particle-steps; "
+    << count_text(s.solver.end_time / s.output.interval) << " snapshots\n";
+  if (!(steps <= kManySteps))
+    o << "  warning: about " << count_text(steps) << " steps at the initial time step (more than "
+      << count_text(kManySteps) << ": the run would take days or never end); check the initial velocities (fastest "
+      << count_text(vmax_all) << " m/s), the materials' sound speeds and end_time\n";
   return o.str();
 }
 

@@ -144,7 +144,19 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   RunStatus status;
   status.state = "running";
   const auto t_start = Clock::now();
-  solver->initialize();
+  try {
+    solver->initialize();
+  } catch (const NumericalFailure& f) {  // e.g. an expression that fails at t = 0: exit 3 as in the loop
+    status.state = "failed";
+    status.message = f.what();
+    write_run_json(dir, doc, options, SetupReport{}, status);
+    std::fprintf(stderr, "mfsd: run stopped at set-up: %s\n", f.what());
+    RunResult r;
+    r.exit_code = 3;
+    r.message = f.what();
+    r.output_dir = dir;
+    return r;
+  }
   if (restart) {
     solver->restore_state(saved->archive);
     saved.reset();  // the state is in the solver now

@@ -69,17 +69,13 @@ bool is_name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) 
 bool is_name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
-bool is_identifier(const std::string& s) {
-  if (s.empty() || !is_name_start(s[0])) return false;
-  for (char c : s)
-    if (!is_name_char(c)) return false;
-  return true;
-}
-
+// At most 100 names: a message listing thousands of constants helps nobody.
 std::string join(const std::vector<std::string>& names) {
   if (names.empty()) return "none";
+  constexpr size_t kMaxListed = 100;
   std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  for (size_t k = 0; k < names.size() && k < kMaxListed; ++k) s += (s.empty() ? "" : ", ") + names[k];
+  if (names.size() > kMaxListed) s += " and " + std::to_string(names.size() - kMaxListed) + " more";
   return s;
 }
 
@@ -687,20 +683,35 @@ class CodeGenerator {
   int depth_ = 0;
 };
 
+}  // namespace
+
 // ---------------------------------------------------------------- caller input
+
+std::string name_problem(const std::string& name) {
+  if (name.empty()) return "an empty name";
+  if (!is_name_start(name[0])) return "a name that starts with neither a letter nor '_'";
+  for (size_t k = 0; k < name.size(); ++k)
+    if (!is_name_char(name[k]))
+      return "a character other than a letter, digit or '_' at column " + std::to_string(k + 1);
+  if (is_reserved(name)) return "a reserved word (if, and, or, skip, Skip, pi)";
+  if (find_function(name)) return "the name of a function";
+  return "";
+}
+
+namespace {
 
 void check_caller_names(const VariableTable& vars, const std::map<std::string, double>& constants) {
   if (vars.names.size() > static_cast<size_t>(kMaxIndex))
     throw std::invalid_argument("expression compiler: too many variables");
   for (size_t i = 0; i < vars.names.size(); ++i) {
     const std::string& v = vars.names[i];
-    if (!is_identifier(v) || is_reserved(v) || find_function(v))
+    if (!name_problem(v).empty())
       throw std::invalid_argument("expression compiler: '" + v + "' cannot be a variable name");
     if (vars.slot(v) != static_cast<int>(i))
       throw std::invalid_argument("expression compiler: variable '" + v + "' listed twice");
   }
   for (const auto& [name, value] : constants) {
-    if (!is_identifier(name) || is_reserved(name) || find_function(name) || vars.slot(name) >= 0)
+    if (!name_problem(name).empty() || vars.slot(name) >= 0)
       throw std::invalid_argument("expression compiler: '" + name + "' cannot be a constant name");
     if (!std::isfinite(value))
       throw std::invalid_argument("expression compiler: constant '" + name + "' is not finite");

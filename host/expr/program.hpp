@@ -41,6 +41,10 @@ class Program;
 Program compile(const std::string& expression, const VariableTable& vars,
                 const std::map<std::string, double>& constants, const std::string& locals = "");
 
+// Why `name` cannot name a constant (or variable) of compile(): not an
+// identifier, a reserved word or a function; empty when it can.
+std::string name_problem(const std::string& name);
+
 // Short human names ("division by zero", "push_const", "sqrt").
 const char* status_text(Status status);
 const char* op_name(Op op);

@@ -19,10 +19,7 @@ void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::strin
     m.name = node.string("name");
     if (!names.insert(m.name).second)
       throw SceneError(node.key_path("name"), "\"" + m.name + "\"", "a name no other measure plane has");
-    for (char c : m.name)
-      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-        throw SceneError(node.key_path("name"), "\"" + m.name + "\"",
-                         "a name of letters, digits, '_', '-' and '.' (it names measure_<name>.csv)");
+    check_file_name(node.key_path("name"), m.name, "measure_<name>.csv");
     m.body = node.string("body", "");
     if (!m.body.empty() && !body_names.count(m.body))
       throw SceneError(node.key_path("body"), "\"" + m.body + "\"", "the name of a body");

@@ -1,5 +1,8 @@
 #include "host/scene/particle_generator.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,10 +17,18 @@
 #include "host/scene/scene_error.hpp"
 #include "host/scene/surface.hpp"
 #include "kernels/expr/interpreter.hpp"
+#include "kernels/tlsph/conditions.hpp"
 
 namespace mfsd {
 
 namespace {
+
+// The generator tests every cell of a body's bounding box; more cells than
+// this take minutes and no memory holds their particles (about 1 kB each in a run).
+constexpr double kMaxLatticeCells = 4e9;
+// What the generator itself keeps per particle (positions, velocities,
+// flags, selections, the surface hash) and a bit more.
+constexpr double kGeneratorBytesPerParticle = 256;
 
 std::string point_text(const Point3& p, int dim) {
   std::ostringstream s;
@@ -27,20 +38,73 @@ std::string point_text(const Point3& p, int dim) {
   return s.str();
 }
 
-// Lattice points of a body: centres of the cells of size dp tiling its bounding box.
-void fill_body(const BodySpec& body, int dim, std::vector<Point3>& out) {
+// Host memory this process may use: physical memory, or less under ulimit -v / -d.
+double memory_limit_bytes() {
+  double bytes = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  for (int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    rlimit r{};
+    if (getrlimit(resource, &r) == 0 && r.rlim_cur != RLIM_INFINITY) bytes = std::min(bytes, double(r.rlim_cur));
+  }
+  return bytes;
+}
+
+std::string bytes_text(double bytes) {
+  std::ostringstream s;
+  s.precision(3);
+  s << bytes / 1e9 << " GB";
+  return s.str();
+}
+
+// Lattice cells of size dp tiling a bounding box, per axis (1 for unused
+// axes); throws when there are more than kMaxLatticeCells (or the box is not
+// finite), before any is visited: each is tested one by one.
+std::array<long, 3> lattice_cells(const Bounds& bb, double dp, int dim, double at_least,
+                                  const std::string& spacing_path) {
+  double n[3] = {1, 1, 1};
+  for (int a = 0; a < dim; ++a) n[a] = std::ceil((bb.max[a] - bb.min[a]) / dp - 1e-6);
+  const double total = n[0] * n[1] * n[2];  // NaN for a box that is not finite
+  if (!(total <= kMaxLatticeCells)) {
+    std::ostringstream got;
+    got.precision(3);
+    got << dp << " for a bounding box of " << point_text(bb.min, dim) << " to " << point_text(bb.max, dim) << " ("
+        << n[0] << " x " << n[1];
+    if (dim == 3) got << " x " << n[2];
+    got << " = " << total << " lattice cells)";
+    std::ostringstream limit;
+    limit.precision(3);
+    limit << "a spacing and a geometry that give at most " << kMaxLatticeCells << " lattice cells";
+    throw SceneError(spacing_path, got.str(), limit.str());
+  }
+  for (int a = 0; a < dim; ++a) n[a] = std::max(at_least, n[a]);
+  return {long(n[0]), long(n[1]), long(n[2])};
+}
+
+// Lattice points of a body: centres of the cells of size dp tiling its
+// bounding box. `total` counts the particles of earlier bodies: the fill stops
+// with an error before the particles outgrow memory (a bad_alloc later).
+void fill_body(const BodySpec& body, int dim, const std::string& path, std::vector<Point3>& out) {
   const Bounds bb = body.geometry.bounds(dim);
   const double dp = body.spacing;
-  long n[3] = {1, 1, 1};
-  for (int a = 0; a < dim; ++a) n[a] = long(std::ceil((bb.max[a] - bb.min[a]) / dp - 1e-6));
+  const std::array<long, 3> n = lattice_cells(bb, dp, dim, 0.0, path + "/spacing");
   const double tol = 1e-9 * dp;
+  const double limit = memory_limit_bytes();
   for (long k = 0; k < n[2]; ++k)
-    for (long j = 0; j < n[1]; ++j)
+    for (long j = 0; j < n[1]; ++j) {
       for (long i = 0; i < n[0]; ++i) {
         Point3 p{bb.min[0] + (double(i) + 0.5) * dp, bb.min[1] + (double(j) + 0.5) * dp,
                  dim == 3 ? bb.min[2] + (double(k) + 0.5) * dp : 0.0};
         if (body.geometry.contains(p, dim, tol)) out.push_back(p);
       }
+      if (double(out.size()) * kGeneratorBytesPerParticle > limit / 2) {
+        std::ostringstream got;
+        got.precision(3);
+        got << dp << " (" << out.size() << " particles after " << 100.0 * double(k * n[1] + j + 1) / double(n[1] * n[2])
+            << " % of the lattice: " << bytes_text(double(out.size()) * kGeneratorBytesPerParticle)
+            << " to set them up, more for the run)";
+        throw SceneError(path + "/spacing", got.str(),
+                         "a scene whose particles fit in memory (" + bytes_text(limit) + " available to mfsd)");
+      }
+    }
 }
 
 // Evaluates the components of a body's initial field (velocity or
@@ -225,6 +289,59 @@ std::vector<long> measure_plane_particles(const Scene& scene, const MeasurePlane
   return ids;
 }
 
+// Velocity conditions active at t = 0 set velocities before the first step
+// (in order, each from the velocities the earlier ones left, as the solver
+// does): an expression that fails there is an input error, found before a
+// run makes its folder. Evaluated in the scene's precision.
+template <class Real>
+void check_initial_velocity_conditions(const Scene& scene, const InitialParticles& P) {
+  const int dim = scene.dimension;
+  std::vector<Point3> v = P.velocity;
+  size_t n_velocity = 0;
+  const char* axis_name[3] = {"x", "y", "z"};
+  for (size_t c = 0; c < scene.conditions.size(); ++c) {
+    const ConditionSpec& cond = scene.conditions[c];
+    if (cond.type != ConditionSpec::Type::velocity) continue;
+    const std::string path = "/velocity_conditions/" + std::to_string(n_velocity++);
+    if (cond.t_start > 0) continue;
+    size_t b = 0;
+    while (scene.bodies[b].name != cond.body) ++b;
+    const auto& ids = P.condition_particles[c].ids;
+    std::vector<Point3> next = v;
+    for (int a = 0; a < dim; ++a) {
+      if (cond.value[size_t(a)].empty()) continue;
+      const std::string cpath = path + "/" + axis_name[a];
+      const expr::Program prog = compile_particle_expression(cond.value[size_t(a)], scene, b, cpath);
+      expr::ProgramView<Real> view;
+      try {
+        view = prog.host_view<Real>();
+      } catch (const expr::ExpressionError& e) {
+        throw SceneError(cpath + ": " + e.what());
+      }
+      for (long i : ids) {
+        Real vars[kParticleVariables] = {};
+        for (int k = 0; k < 3; ++k) {
+          const double u = P.displacement.empty() ? 0.0 : P.displacement[size_t(i)][k];
+          vars[var_x0 + k] = Real(P.position[size_t(i)][k]);
+          vars[var_ux + k] = Real(u);
+          vars[var_x + k] = Real(P.position[size_t(i)][k] + u);
+          vars[var_vx + k] = Real(v[size_t(i)][k]);
+        }
+        vars[var_dx] = Real(scene.bodies[b].spacing);
+        Real value = 0;
+        int pc = 0;
+        const expr::Status st = expr::evaluate(view, vars, &value, &pc);
+        if (st == expr::Status::skipped) continue;
+        if (st != expr::Status::ok)
+          throw SceneError(cpath + ": " + prog.describe_error(st, pc) +
+                           " at t = 0, x0 = " + point_text(P.position[size_t(i)], dim));
+        next[size_t(i)][a] = double(value);
+      }
+    }
+    v = std::move(next);
+  }
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, double>> body_expression_constants(const Scene& scene, size_t b) {
@@ -295,7 +412,7 @@ InitialParticles generate_particles(const Scene& scene) {
     body_index[body.name] = b;
     const std::string path = "/bodies/" + std::to_string(b);
     const long begin = long(P.position.size());
-    fill_body(body, dim, P.position);
+    fill_body(body, dim, path, P.position);
     const long end = long(P.position.size());
     if (end == begin)
       throw SceneError(path + "/geometry", body.geometry.describe(),
@@ -387,10 +504,16 @@ InitialParticles generate_particles(const Scene& scene) {
         compile_particle_expression(cond.value[size_t(a)], scene, b, path + "/" + axis_name[a]);
     P.condition_particles.push_back(std::move(sel));
   }
+  if (scene.solver.precision == Precision::single_precision)
+    check_initial_velocity_conditions<float>(scene, P);
+  else
+    check_initial_velocity_conditions<double>(scene, P);
 
   for (size_t k = 0; k < scene.rigid_bodies.size(); ++k) {
     const RigidBodySpec& rb = scene.rigid_bodies[k];
     RigidBodyMotion(rb, scene.constants, "/rigid_bodies/" + std::to_string(k));  // checks the expressions
+    lattice_cells(rb.shape.bounds(dim), rb.marker_spacing, dim, 1.0,
+                  "/rigid_bodies/" + std::to_string(k) + "/marker_spacing");
     P.rigid_markers.push_back(rigid_body_markers(rb.shape, dim, rb.marker_spacing));
     if (P.rigid_markers.back().empty())
       throw SceneError("/rigid_bodies/" + std::to_string(k) + "/shape", rb.shape.describe(),

@@ -11,6 +11,7 @@
 
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
+#include "host/scene/body_properties.hpp"
 #include "host/scene/scene_error.hpp"
 
 namespace mfsd {
@@ -21,6 +22,24 @@ namespace {
 // per-body constants that body expressions receive.
 const std::set<std::string> kReservedNames = {"x0", "y0", "z0", "x",  "y",  "z",  "ux", "uy", "uz",   "vx",
                                               "vy", "vz", "t",  "dt", "dx", "pi", "c0", "cs", "rho0", "h"};
+
+// The entries of `constants` whose names occur in `text` as words.
+std::map<std::string, double> named_constants(const std::string& text, const std::map<std::string, double>& constants) {
+  std::map<std::string, double> named;
+  auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (size_t k = 0; k < text.size();) {
+    if (!word(text[k])) {
+      ++k;
+      continue;
+    }
+    size_t end = k;
+    while (end < text.size() && word(text[end])) ++end;
+    const auto it = constants.find(text.substr(k, end - k));
+    if (it != constants.end()) named.insert(*it);
+    k = end;
+  }
+  return named;
+}
 
 void line_column(const std::string& text, size_t byte, size_t& line, size_t& column) {
   line = 1;
@@ -74,6 +93,28 @@ MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std:
   }
   m.finish();
   return spec;
+}
+
+// Each number in range can still give an infinite or zero derived quantity
+// (E = 1e308 with rho0 = 1e-300: c0 = inf), which expressions and the time
+// step would meet later.
+void check_body_properties(const BodySpec& body, const SolverSpec& solver, int dim, const std::string& path) {
+  const BodyProperties p = body_properties(body, solver, dim);
+  const std::pair<const char*, double> material[] = {{"K", p.K}, {"G", p.G}, {"c0", p.c0}, {"cs", p.c_shear}};
+  for (const auto& [name, value] : material)
+    if (!std::isfinite(value) || !(value > 0)) {
+      std::ostringstream got;
+      got << "density " << body.material.density << ", youngs_modulus " << body.material.youngs_modulus
+          << " and poisson_ratio " << body.material.poisson_ratio << " (" << name << " = " << value << ")";
+      throw SceneError(path + "/material", got.str(), "a material whose moduli and sound speeds are finite and > 0");
+    }
+  const std::pair<const char*, double> lattice[] = {{"h", p.h}, {"dp^d", p.volume}, {"rho0 dp^d", p.mass}};
+  for (const auto& [name, value] : lattice)
+    if (!std::isfinite(value) || !(value > 0)) {
+      std::ostringstream got;
+      got << body.spacing << " (" << name << " = " << value << ")";
+      throw SceneError(path + "/spacing", got.str(), "a spacing whose particle volume and mass are finite and > 0");
+    }
 }
 
 SolverSpec read_solver(JsonNode s, int dim) {
@@ -149,12 +190,23 @@ namespace {
 // Arrays and objects nested deeper than this are refused before parsing: a
 // parsed document is destroyed recursively, and a scene never needs it.
 constexpr int kMaxJsonDepth = 256;
+// Objects with more keys than this too: the parser's ordered objects insert
+// a key in O(keys) (100,000 constants took minutes).
+constexpr long kMaxObjectKeys = 10000;
 
-// Throws a SceneError at the first bracket nested deeper than kMaxJsonDepth
-// (brackets inside strings do not count).
+// Throws a SceneError at the first bracket nested deeper than kMaxJsonDepth,
+// or at the key beyond kMaxObjectKeys of an object (brackets and commas
+// inside strings do not count).
 void check_json_depth(const std::string& text, const std::string& source_name) {
   int depth = 0;
   bool in_string = false, escaped = false;
+  std::vector<long> keys;  // per open bracket: commas so far in an object, -1 in an array
+  auto fail = [&](size_t k, const std::string& what) {
+    size_t line, column;
+    line_column(text, k, line, column);
+    throw SceneError(source_name + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                     ": invalid scene: " + what);
+  };
   for (size_t k = 0; k < text.size(); ++k) {
     const char c = text[k];
     if (in_string) {
@@ -168,18 +220,47 @@ void check_json_depth(const std::string& text, const std::string& source_name) {
     }
     if (c == '"') in_string = true;
     if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonDepth) {
-        size_t line, column;
-        line_column(text, k, line, column);
-        throw SceneError(source_name + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                         ": invalid scene: arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) +
-                         " levels");
-      }
+      if (++depth > kMaxJsonDepth)
+        fail(k, "arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+      keys.push_back(c == '{' ? 0 : -1);
     }
-    if (c == ']' || c == '}') --depth;
+    if (c == ',' && !keys.empty() && keys.back() >= 0 && ++keys.back() >= kMaxObjectKeys)
+      fail(k, "an object with more than " + std::to_string(kMaxObjectKeys) + " keys");
+    if (c == ']' || c == '}') {
+      --depth;
+      if (!keys.empty()) keys.pop_back();
+    }
   }
 }
 }  // namespace
+
+// The first occurrence of `token` outside JSON strings that is a whole token
+// (not part of a longer number or name); npos when there is none.
+size_t find_outside_strings(const std::string& text, const std::string& token) {
+  if (token.empty()) return std::string::npos;
+  auto part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+'; };
+  bool in_string = false, escaped = false;
+  for (size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      continue;
+    }
+    if (text.compare(k, token.size(), token) == 0 && (k == 0 || !part(text[k - 1])) &&
+        (k + token.size() >= text.size() || !part(text[k + token.size()])))
+      return k;
+  }
+  return std::string::npos;
+}
 
 Json parse_scene_json(const std::string& text, const std::string& source_name) {
   check_json_depth(text, source_name);
@@ -189,7 +270,18 @@ Json parse_scene_json(const std::string& text, const std::string& source_name) {
     std::string what = e.what();
     const auto p = what.find("] ");
     if (p != std::string::npos) what = what.substr(p + 2);
-    throw SceneError(source_name + ": invalid JSON: " + what + " (numbers must be finite doubles)");
+    // The exception has no position: the number it quotes is found in the text.
+    std::string where;
+    const auto q0 = what.find('\''), q1 = what.rfind('\'');
+    if (q0 != std::string::npos && q1 > q0) {
+      const size_t at = find_outside_strings(text, what.substr(q0 + 1, q1 - q0 - 1));
+      if (at != std::string::npos) {
+        size_t line, column;
+        line_column(text, at, line, column);
+        where = ":" + std::to_string(line) + ":" + std::to_string(column);
+      }
+    }
+    throw SceneError(source_name + where + ": invalid JSON: " + what + " (numbers must be finite doubles)");
   } catch (const Json::parse_error& e) {
     size_t line, column;
     line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);
@@ -202,6 +294,16 @@ Json parse_scene_json(const std::string& text, const std::string& source_name) {
   }
 }
 
+void check_file_name(const std::string& path, const std::string& name, const std::string& used_in) {
+  constexpr size_t kMaxLength = 200;
+  bool ok = name.size() <= kMaxLength && name != "." && name != "..";
+  for (char c : name) ok = ok && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.');
+  if (!ok)
+    throw SceneError(path, json_text(Json(name)) + " (" + std::to_string(name.size()) + " characters)",
+                     "a name of at most " + std::to_string(kMaxLength) +
+                         " letters, digits, '_', '-' and '.', not \".\" or \"..\" (it names " + used_in + ")");
+}
+
 std::string path_of(const std::string& assignment) { return assignment.substr(0, assignment.find('=')); }
 
 void apply_override(Json& doc, const std::string& assignment) {
@@ -210,6 +312,12 @@ void apply_override(Json& doc, const std::string& assignment) {
     throw SceneError("--set " + assignment, "", "the form path=value, e.g. solver.hourglass=laplacian");
   const std::string path = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
+  try {  // every string of a scene must be valid UTF-8 (run.json holds them)
+    (void)Json(assignment).dump();
+  } catch (const Json::type_error&) {
+    throw SceneError("--set " + Json(path).dump(-1, ' ', true, Json::error_handler_t::replace),
+                     "bytes that are not UTF-8", "UTF-8 text");
+  }
   Json value;
   check_json_depth(text, "--set " + path_of(assignment));
   try {
@@ -262,18 +370,22 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
   std::map<std::string, double> constants;
   auto eval = [&constants](const std::string& text, const std::string& path) {
     try {
-      expr::Program p = expr::compile(text, expr::VariableTable{}, constants);
+      // Only the constants the text names: compile() checks every constant
+      // it is given, and a scene of n constants evaluates n texts.
+      expr::Program p = expr::compile(text, expr::VariableTable{}, named_constants(text, constants));
       return p.evaluate_host(nullptr);
     } catch (const expr::ExpressionError& e) {
+      try {  // again with all of them, for a message that lists them
+        (void)expr::compile(text, expr::VariableTable{}, constants).evaluate_host(nullptr);
+      } catch (const expr::ExpressionError& all) {
+        throw SceneError(path + ": " + all.what());
+      }
       throw SceneError(path + ": " + e.what());
     }
   };
   JsonNode root(doc, "", resolved, eval);
   scene.name = root.string("name");
-  for (char c : scene.name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-      throw SceneError("/name", "\"" + scene.name + "\"",
-                       "a name of letters, digits, '_', '-' and '.' (it names the output folder)");
+  check_file_name("/name", scene.name, "the output folder out/<name> and the snapshot files");
   scene.description = root.string("description", "");
   if (!root.has("dimension")) throw SceneError("/dimension", "nothing", "2 or 3 (this key is required)");
   scene.dimension = int(root.integer("dimension", 2, 2, 3));
@@ -288,8 +400,10 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
         throw SceneError(path, "the reserved name '" + name + "'",
                          "another name (reserved: variables x0 y0 z0 x y z ux uy uz vx vy vz t dt dx, pi, and the body "
                          "constants c0 cs rho0 h)");
-      if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_'))
-        throw SceneError(path, "the name '" + name + "'", "a name starting with a letter or '_'");
+      if (const std::string problem = expr::name_problem(name); !problem.empty())
+        throw SceneError(path, json_text(Json(name)) + ", " + problem,
+                         "a name of letters, digits and '_' that starts with a letter or '_' and is neither a "
+                         "function nor a reserved word (if and or skip Skip pi)");
       const double v = c->number(name, Range::any());
       constants[name] = v;
       scene.constants.emplace_back(name, v);
@@ -310,6 +424,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     body.spacing = node.number("spacing", Range::positive());
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"), body.spacing, dim, scene.warnings);
+    if (body.material.fracture.enabled) check_file_name(node.key_path("name"), body.name, "crack_<name>.csv");
     if (body.material.fracture.enabled && scene.solver.hourglass != HourglassControl::none)
       throw SceneError(
           "/solver/hourglass",
@@ -321,6 +436,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
                        std::string("\"") + to_string(body.material.model) + "\" with solver.hourglass \"laplacian\"",
                        "an elastic model, or hourglass \"genog\" or \"none\": the Laplacian form of seed 003 "
                        "is defined for elastic bodies only");
+    check_body_properties(body, scene.solver, dim, node.path());
     JsonNode v = node.object_or_empty("initial_velocity");
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < dim; ++a) body.initial_velocity[size_t(a)] = v.expression(axes[a], "0");

@@ -61,6 +61,11 @@ FractureSpec read_fracture(JsonNode node, const MaterialSpec& material, double s
 // measure_planes[] into scene.measure_planes (measure_plane_reader.cpp).
 void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 
+// A name that becomes part of a file or folder name (`used_in`, e.g.
+// "measure_<name>.csv"): letters, digits, '_', '-' and '.', at most 200
+// characters (the file system's limit is 255), not "." or "..".
+void check_file_name(const std::string& path, const std::string& name, const std::string& used_in);
+
 // Validates the document into a Scene; fills `resolved`.
 Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir = "");
 

@@ -429,6 +429,38 @@ TEST(Expression, CallerMistakesAreInvalidArguments) {
   EXPECT_THROW(compile("1", VariableTable{{"x0"}}, {{"c", NAN}}), std::invalid_argument);
 }
 
+// The scene reader asks name_problem() before it passes a constant (issue
+// 19: "bad$name" reached compile() and became an internal error).
+TEST(Expression, NameProblemSaysWhyANameCannotBeAConstant) {
+  EXPECT_EQ(name_problem("L0"), "");
+  EXPECT_EQ(name_problem("_h_over_dp"), "");
+  EXPECT_EQ(name_problem(""), "an empty name");
+  EXPECT_EQ(name_problem("2x"), "a name that starts with neither a letter nor '_'");
+  EXPECT_EQ(name_problem("bad$name"), "a character other than a letter, digit or '_' at column 4");
+  EXPECT_EQ(name_problem("a b"), "a character other than a letter, digit or '_' at column 2");
+  EXPECT_EQ(name_problem("skip"), "a reserved word (if, and, or, skip, Skip, pi)");
+  EXPECT_EQ(name_problem("pi"), "a reserved word (if, and, or, skip, Skip, pi)");
+  EXPECT_EQ(name_problem("sinh"), "the name of a function");
+  // Whatever name_problem() accepts, compile() accepts as a constant.
+  for (const char* name : {"L0", "_h_over_dp", "sinus", "iff"})
+    EXPECT_NO_THROW(compile(name, VariableTable{}, {{name, 1.0}})) << name;
+}
+
+// A message lists at most 100 constants (a scene of 9,000 made one of 100 kB).
+TEST(Expression, UnknownNameListsAtMost100Constants) {
+  std::map<std::string, double> constants;
+  for (int k = 0; k < 150; ++k) constants["c" + std::to_string(1000 + k)] = k;
+  try {
+    compile("foo", VariableTable{}, constants);
+    FAIL() << "no error";
+  } catch (const ExpressionError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("constants: pi, c1000, c1001,"), std::string::npos) << m;
+    EXPECT_NE(m.find(", c1098 and 51 more"), std::string::npos) << m;  // pi and 99 of them
+    EXPECT_EQ(m.find("c1099"), std::string::npos) << m;
+  }
+}
+
 // ------------------------------------------------------------------ run-time errors
 
 struct RunTimeCase {
