@@ -1,14 +1,12 @@
 #include "host/scene/particle_generator.hpp"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <sstream>
 
+#include "host/backend/host_memory.hpp"
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
 #include "host/scene/body_properties.hpp"
@@ -36,16 +34,6 @@ std::string point_text(const Point3& p, int dim) {
   if (dim == 3) s << ", " << p[2];
   s << "]";
   return s.str();
-}
-
-// Host memory this process may use: physical memory, or less under ulimit -v / -d.
-double memory_limit_bytes() {
-  double bytes = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  for (int resource : {RLIMIT_AS, RLIMIT_DATA}) {
-    rlimit r{};
-    if (getrlimit(resource, &r) == 0 && r.rlim_cur != RLIM_INFINITY) bytes = std::min(bytes, double(r.rlim_cur));
-  }
-  return bytes;
 }
 
 std::string bytes_text(double bytes) {
@@ -87,7 +75,7 @@ void fill_body(const BodySpec& body, int dim, const std::string& path, std::vect
   const double dp = body.spacing;
   const std::array<long, 3> n = lattice_cells(bb, dp, dim, 0.0, path + "/spacing");
   const double tol = 1e-9 * dp;
-  const double limit = memory_limit_bytes();
+  const double limit = host_memory_limit_bytes();
   for (long k = 0; k < n[2]; ++k)
     for (long j = 0; j < n[1]; ++j) {
       for (long i = 0; i < n[0]; ++i) {

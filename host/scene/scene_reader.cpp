@@ -197,9 +197,28 @@ constexpr long kMaxObjectKeys = 10000;
 // Throws a SceneError at the first bracket nested deeper than kMaxJsonDepth,
 // or at the key beyond kMaxObjectKeys of an object (brackets and commas
 // inside strings do not count).
+// Scans JSON text one character at a time: inside() is true for the
+// characters of a string literal, its quotes included.
+struct JsonStrings {
+  bool in_string = false, escaped = false;
+  bool inside(char c) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+      return true;
+    }
+    if (c == '"') in_string = true;
+    return in_string;
+  }
+};
+
 void check_json_depth(const std::string& text, const std::string& source_name) {
   int depth = 0;
-  bool in_string = false, escaped = false;
+  JsonStrings strings;
   std::vector<long> keys;  // per open bracket: commas so far in an object, -1 in an array
   auto fail = [&](size_t k, const std::string& what) {
     size_t line, column;
@@ -209,16 +228,7 @@ void check_json_depth(const std::string& text, const std::string& source_name) {
   };
   for (size_t k = 0; k < text.size(); ++k) {
     const char c = text[k];
-    if (in_string) {
-      if (escaped)
-        escaped = false;
-      else if (c == '\\')
-        escaped = true;
-      else if (c == '"')
-        in_string = false;
-      continue;
-    }
-    if (c == '"') in_string = true;
+    if (strings.inside(c)) continue;
     if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
         fail(k, "arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
@@ -239,22 +249,10 @@ void check_json_depth(const std::string& text, const std::string& source_name) {
 size_t find_outside_strings(const std::string& text, const std::string& token) {
   if (token.empty()) return std::string::npos;
   auto part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+'; };
-  bool in_string = false, escaped = false;
+  JsonStrings strings;
   for (size_t k = 0; k < text.size(); ++k) {
     const char c = text[k];
-    if (in_string) {
-      if (escaped)
-        escaped = false;
-      else if (c == '\\')
-        escaped = true;
-      else if (c == '"')
-        in_string = false;
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-      continue;
-    }
+    if (strings.inside(c)) continue;
     if (text.compare(k, token.size(), token) == 0 && (k == 0 || !part(text[k - 1])) &&
         (k + token.size() >= text.size() || !part(text[k + token.size()])))
       return k;

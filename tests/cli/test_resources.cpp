@@ -2,42 +2,20 @@
 // 19): a run whose estimated memory exceeds what mfsd may use, a scene name
 // too long for the file system, checkpoint intervals below the run's
 // resolution; heavy but legal outputs are accepted with a warning.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <string>
+
+#include "cli_shell.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;
-};
+using mfsd::test::Result;
+using mfsd::test::shell;
 
-Result shell(const std::string& cmd) {
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-class Resources : public ::testing::Test {
+class Resources : public mfsd::test::ScratchTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mfsd_resources_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // `mfsd run` exits 2 naming `part` and leaves no output folder.
   void expect_refused(const std::string& prefix, const std::string& args, const std::string& part) {
     const std::string out = (dir_ / "out").string();
@@ -46,8 +24,6 @@ class Resources : public ::testing::Test {
     EXPECT_NE(r.output.find(part), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out)) << "an output folder was left behind";
   }
-
-  fs::path dir_;
 };
 
 const std::string kColumn = std::string(MFSD_SOURCE_DIR) + "/configs/twisting_column_3d.json";

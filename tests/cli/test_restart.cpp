@@ -3,11 +3,6 @@
 // the same files, byte for byte, as the run that was never stopped (CPU, one
 // thread); checkpoints that do not fit are refused as input errors; every file
 // left after a stop, even SIGKILL, is whole.
-#include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -15,24 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "cli_shell.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;  // exit code, or -signal when killed by one
-  std::string output;
-};
-
-Result shell(const std::string& cmd) {
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-Result mfsd(const std::string& args) { return shell(std::string(MFSD_BINARY) + " " + args); }
+using mfsd::test::Result;
+using mfsd::test::run_mfsd;
+using mfsd::test::shell;
 
 std::string read(const fs::path& f) {
   std::ifstream in(f, std::ios::binary);
@@ -49,16 +35,8 @@ std::string scene(const char* name) {
   return name;
 }
 
-class Restart : public ::testing::Test {
+class Restart : public mfsd::test::ScratchTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mfsd_restart_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string out(const char* name) const { return (dir_ / name).string(); }
 
   // Every CSV, the PVD and every VTU of the uninterrupted run `a` are in `b`
@@ -88,14 +66,14 @@ class Restart : public ::testing::Test {
   // checkpoint and continued: the outputs agree bit for bit.
   void expect_restart_reproduces(const std::string& scene_file, const std::string& sets, long stop) {
     const std::string common = scene_file + " -q --threads 1 " + sets;
-    const Result a = mfsd("run " + common + " -o " + out("a"));
+    const Result a = run_mfsd("run " + common + " -o " + out("a"));
     ASSERT_EQ(a.code, 0) << a.output;
-    const Result b = mfsd("run " + common + " -o " + out("b") + " --max-steps " + std::to_string(stop) +
-                          " --set output.checkpoint_interval=1e30");
+    const Result b = run_mfsd("run " + common + " -o " + out("b") + " --max-steps " + std::to_string(stop) +
+                              " --set output.checkpoint_interval=1e30");
     ASSERT_EQ(b.code, 0) << b.output;
     const auto ckpt = nlohmann::json::parse(read(fs::path(out("b")) / "checkpoint" / "checkpoint.json"));
     EXPECT_EQ(ckpt["steps"].get<long>(), stop);
-    const Result c = mfsd("run " + common + " --restart " + out("b"));
+    const Result c = run_mfsd("run " + common + " --restart " + out("b"));
     ASSERT_EQ(c.code, 0) << c.output;
     const auto run_a = nlohmann::json::parse(read(fs::path(out("a")) / "run.json"));
     const auto run_b = nlohmann::json::parse(read(fs::path(out("b")) / "run.json"));
@@ -104,8 +82,6 @@ class Restart : public ::testing::Test {
     EXPECT_EQ(run_b["restart"]["steps"].get<long>(), stop);
     expect_same_outputs(out("a"), out("b"));
   }
-
-  fs::path dir_;
 };
 
 // Every file left in an output folder is whole: CSV rows have the header's
@@ -163,7 +139,7 @@ TEST_F(Restart, FractureContinuesBitForBit) { expect_restart_reproduces(scene("n
 TEST_F(Restart, InterruptedRunContinuesBitForBit) {
   const std::string common =
       scene("oscillating_plate_2d.json") + " -q --threads 1 --set constants.H_over_dp=8 --set solver.end_time=0.4";
-  const Result a = mfsd("run " + common + " -o " + out("a"));
+  const Result a = run_mfsd("run " + common + " -o " + out("a"));
   ASSERT_EQ(a.code, 0) << a.output;
   const auto wall = nlohmann::json::parse(read(fs::path(out("a")) / "timing.json"))["wall_seconds"].get<double>();
   ASSERT_GT(wall, 0.6) << "the scene must run long enough to be interrupted";
@@ -174,7 +150,7 @@ TEST_F(Restart, InterruptedRunContinuesBitForBit) {
   const auto run_b = nlohmann::json::parse(read(fs::path(out("b")) / "run.json"));
   EXPECT_EQ(run_b["status"], "interrupted");
   expect_whole_files(out("b"));
-  const Result c = mfsd("run " + common + " --restart " + out("b"));
+  const Result c = run_mfsd("run " + common + " --restart " + out("b"));
   ASSERT_EQ(c.code, 0) << c.output;
   expect_same_outputs(out("a"), out("b"));
 }
@@ -200,9 +176,9 @@ TEST_F(Restart, EveryStopLeavesWholeFiles) {
 TEST_F(Restart, CheckpointsThatDoNotFitAreRefused) {
   const std::string plate = scene("oscillating_plate_2d.json");
   const std::string common = plate + " -q --threads 1 --set solver.end_time=0.02 --max-steps 20";
-  ASSERT_EQ(mfsd("run " + common + " -o " + out("b") + " --set output.checkpoint_interval=1").code, 0);
+  ASSERT_EQ(run_mfsd("run " + common + " -o " + out("b") + " --set output.checkpoint_interval=1").code, 0);
   auto refused = [&](const std::string& args, const std::string& part) {
-    const Result r = mfsd("run " + args);
+    const Result r = run_mfsd("run " + args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find(part), std::string::npos) << r.output;
   };
@@ -211,8 +187,8 @@ TEST_F(Restart, CheckpointsThatDoNotFitAreRefused) {
   refused(plate + " --set solver.end_time=0.02 --precision float --restart " + out("b"), "--precision double");
   refused(plate + " --restart " + out("b") + " -o " + out("c"), "drop -o");
   // The same scene continues; a longer end time is allowed (extends the run).
-  EXPECT_EQ(mfsd("run " + plate + " -q --threads 1 --set solver.end_time=0.03 --max-steps 30 " +
-                 "--set output.checkpoint_interval=1 --restart " + out("b"))
+  EXPECT_EQ(run_mfsd("run " + plate + " -q --threads 1 --set solver.end_time=0.03 --max-steps 30 " +
+                     "--set output.checkpoint_interval=1 --restart " + out("b"))
                 .code,
             0);
   // Another binary's checkpoint, and a damaged one.
