@@ -1,6 +1,8 @@
 // Backend-generic algorithms over Thrust: parallel_for, reductions, sort,
 // gather and scans. The backend's BackendTraits come from backend/cpu.hpp or
-// backend/cuda.cuh (include one of them).
+// backend/cuda.cuh (include one of them). Every function here that makes the
+// host wait for the device (a result on the host, a blocking copy) counts a
+// round trip (round_trips.hpp), the same on every backend.
 #pragma once
 #include <thrust/copy.h>
 #include <thrust/count.h>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "host/backend/backend.hpp"
+#include "host/backend/round_trips.hpp"
 
 namespace mfsd {
 
@@ -27,10 +30,23 @@ inline void parallel_for(Index n, const F& f) {
   parallel_for(B{}, Index(0), n, f);
 }
 
-// Reduction of f(i) over [begin, end) with the associative, commutative op.
+// f(i) exactly once for each i in [begin, end), where f may write element i's
+// state as in a parallel_for, its results combined with the associative,
+// commutative op from init (op's identity) into *out in backend memory,
+// without a host wait (backend/cpu.hpp, backend/cuda.cuh). The only form of
+// reduction whose functor may have side effects.
+template <class B, class T, class F, class Op>
+inline void parallel_reduce(Index begin, Index end, const F& f, T init, Op op, T* out) {
+  parallel_reduce(B{}, begin, end, f, init, op, out);
+}
+
+// Reduction of a pure f(i) over [begin, end) with the associative, commutative
+// op, returned to the host (a round trip). Thrust may evaluate f any number of
+// times per element: f must not write anything (parallel_reduce does).
 template <class B, class T, class F, class Op>
 inline T transform_reduce(Index begin, Index end, const F& f, T init, Op op) {
   if (end <= begin) return init;
+  count_round_trip();
   return thrust::transform_reduce(BackendTraits<B>::policy(), thrust::counting_iterator<Index>(begin),
                                   thrust::counting_iterator<Index>(end), f, init, op);
 }
@@ -62,6 +78,7 @@ inline void gather(const DeviceVector<B, Index>& map, const DeviceVector<B, T>& 
 template <class B, class TIn, class TOut>
 inline TOut exclusive_scan(const DeviceVector<B, TIn>& in, DeviceVector<B, TOut>& out) {
   if (in.empty()) return TOut(0);
+  count_round_trip();
   thrust::exclusive_scan(BackendTraits<B>::policy(), in.begin(), in.end(), out.begin(), TOut(0));
   const TOut last_out = out[in.size() - 1];
   const TIn last_in = in[in.size() - 1];
@@ -71,6 +88,7 @@ inline TOut exclusive_scan(const DeviceVector<B, TIn>& in, DeviceVector<B, TOut>
 template <class B, class T>
 inline std::vector<T> to_host(const DeviceVector<B, T>& v) {
   std::vector<T> h(v.size());
+  count_round_trip();
   thrust::copy(v.begin(), v.end(), h.begin());
   return h;
 }
@@ -78,6 +96,7 @@ inline std::vector<T> to_host(const DeviceVector<B, T>& v) {
 template <class B, class T>
 inline void from_host(const std::vector<T>& h, DeviceVector<B, T>& v) {
   v.resize(h.size());
+  count_round_trip();
   thrust::copy(h.begin(), h.end(), v.begin());
 }
 

@@ -26,6 +26,10 @@ struct Cuda {
 template <class B>
 struct BackendTraits;
 
+// Uploads without a host wait (backend/cpu.hpp, backend/cuda.cuh).
+template <class B>
+class HostStaging;
+
 template <class B, class T>
 using DeviceVector = typename BackendTraits<B>::template vector<T>;
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "host/backend/backend_error.hpp"
 #include "host/cli/check_summary.hpp"
 #include "host/driver/run.hpp"
 #include "host/output/checkpoint_file.hpp"
@@ -52,7 +53,7 @@ const char* kUsage =
     "  -q, --quiet             no progress line and no summary\n"
     "\n"
     "outputs: run.json, snapshots.pvd + snapshots/*.vtu (ParaView), probes.csv, energies.csv, timing.json\n"
-    "exit codes: 0 success, 2 bad input, 3 numerical failure (NaN/Inf or particle out of bounds),\n"
+    "exit codes: 0 success, 2 bad input, 3 numerical failure (NaN/Inf or particle out of bounds), 4 device error,\n"
     "            130 / 143 interrupted by Ctrl-C / SIGTERM (a checkpoint is written: continue with --restart)\n";
 
 std::string join_args(int argc, char** argv) {
@@ -186,6 +187,9 @@ int main(int argc, char** argv) {
   } catch (const cxxopts::exceptions::exception& e) {
     std::fprintf(stderr, "mfsd: error: %s\nrun 'mfsd --help' for usage\n", e.what());
     return 2;
+  } catch (const BackendError& e) {
+    std::fprintf(stderr, "mfsd: device error: %s\n", e.what());
+    return 4;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mfsd: internal error: %s\n", e.what());
     return 1;

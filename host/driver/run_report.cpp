@@ -124,6 +124,9 @@ void write_timing_json(const std::string& dir, const SetupReport& setup, const S
     auto q = [&](double f) { return 1e6 * t[size_t(f * double(t.size() - 1) + 0.5)]; };
     j["step_microseconds"] = {{"min", q(0)}, {"p10", q(0.1)}, {"median", q(0.5)}, {"p90", q(0.9)}, {"max", q(1)}};
   }
+  // Host waits for the backend per timed step (host/backend/round_trips.hpp):
+  // 1 on every scene (issue 20); outputs' copies are not in steps.
+  j["round_trips_per_step"] = timed > 0 ? double(timers.round_trips()) / double(timed) : 0.0;
   j["bytes_per_particle"] = setup.bytes_per_particle;
   j["backend"] = options.solver.backend;
   j["threads"] = options.solver.backend == "cpu"

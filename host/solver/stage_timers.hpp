@@ -25,10 +25,15 @@ class StageTimers {
   }
   void reset() {
     for (auto& st : stages_) st.second = 0;
+    round_trips_ = 0;
   }
+  // Host round trips inside steps (host/backend/round_trips.hpp), since the last reset.
+  void add_round_trips(long n) { round_trips_ += n; }
+  long round_trips() const { return round_trips_; }
 
  private:
   std::vector<std::pair<std::string, double>> stages_;
+  long round_trips_ = 0;
 };
 
 }  // namespace mfsd

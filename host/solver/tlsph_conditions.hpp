@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/backend/device_results.hpp"
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
 #include "host/scene/particle_expressions.hpp"
@@ -102,15 +103,9 @@ class TlsphConditions {
 
   bool empty() const { return clamps_.empty() && conditions_.empty(); }
 
-  // Velocity conditions whose window holds t = 0, at set-up (no reaction).
-  void apply_initial(const TlsphViews<D, Real>& v) {
-    for (auto& c : conditions_)
-      if (c->spec->type == ConditionSpec::Type::velocity && c->active(0.0)) velocity(*c, v, 0.0, 0.0);
-    for (auto& k : clamps_) clamp(k, v, 0.0);
-  }
-
-  // Loads at t + dt/2, after the force stage (t: time at the start of the step).
-  void apply_loads(const TlsphViews<D, Real>& v, double t, double dt, long step) {
+  // Loads at t + dt/2, after the force stage (t: time at the start of the
+  // step). Their sums stay in `results` until collect().
+  void apply_loads(const TlsphViews<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
     const double te = t + 0.5 * dt;
     for (auto& c : conditions_) {
       if (c->spec->type == ConditionSpec::Type::velocity) continue;
@@ -125,22 +120,20 @@ class TlsphConditions {
                              Real(1.0 / double(n)),
                              v.velocity,
                              v.acceleration};
-      const ConditionSums s = transform_reduce<B>(0, n, f, ConditionSums::zero(), ConditionSumsCombine{});
-      finish(*c, s, v, te, step);
-      body_external_work_[c->body] += s.power * dt;
+      pending_.push_back(
+          Pending{c.get(), nullptr, nullptr, c->body, &body_external_work_, te, dt, step,
+                  results.reduce(Index(0), n, f, ConditionSums::zero(), ConditionSumsCombine{})});
     }
   }
 
   // Velocity conditions at t + dt, then clamps (clamps win where both hold).
-  void apply_boundary(const TlsphViews<D, Real>& v, double t, double dt, long step) {
+  void apply_boundary(const TlsphViews<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
     const double te = t + dt;
     for (auto& c : conditions_) {
       if (c->spec->type != ConditionSpec::Type::velocity) continue;
       c->force = Point3{0, 0, 0};
       if (!c->active(te)) continue;
-      const ConditionSums s = velocity(*c, v, te, dt);
-      finish(*c, s, v, te, step);
-      body_boundary_work_[c->body] += s.power * dt;
+      velocity(*c, v, te, dt, step, results);
     }
     for (auto& w : walls_) {
       w.force = Point3{0, 0, 0};
@@ -157,13 +150,35 @@ class TlsphConditions {
                                v.volume,
                                v.velocity};
         for (int a = 0; a < D; ++a) f.point.v[a] = Real(w.spec->point[a]), f.normal.v[a] = Real(w.spec->normal[a]);
-        const ConditionSums s =
-            transform_reduce<B>(0, ranges_[b].size(), f, ConditionSums::zero(), ConditionSumsCombine{});
-        for (int a = 0; a < 3; ++a) w.force[a] += s.force[a];
-        body_boundary_work_[b] += s.power * dt;
+        pending_.push_back(
+            Pending{nullptr, &w, nullptr, b, &body_boundary_work_, te, dt, step,
+                    results.reduce(Index(0), ranges_[b].size(), f, ConditionSums::zero(), ConditionSumsCombine{})});
       }
     }
-    for (auto& k : clamps_) clamp(k, v, dt);
+    for (auto& k : clamps_) clamp(k, v, dt, step, results);
+  }
+
+  // Velocity conditions whose window holds t = 0, and the clamps, at set-up
+  // (no reaction, no work); their results are collected like a step's.
+  void apply_initial(const TlsphViews<D, Real>& v, DeviceResults<B>& results) {
+    for (auto& c : conditions_)
+      if (c->spec->type == ConditionSpec::Type::velocity && c->active(0.0)) velocity(*c, v, 0.0, 0.0, 0, results);
+    for (auto& k : clamps_) clamp(k, v, 0.0, 0, results);
+  }
+
+  // After results.fetch(): the forces and work of this step's conditions,
+  // loads, walls and clamps; a run-time expression error stops the run with
+  // the condition, the component, the error and the particle.
+  void collect(const DeviceResults<B>& results, const TlsphViews<D, Real>& v) {
+    std::vector<Pending> pending;
+    pending.swap(pending_);
+    for (const Pending& p : pending) {
+      const ConditionSums s = results.get(p.slot);
+      Point3& force = p.condition ? p.condition->force : p.wall ? p.wall->force : p.clamp->force;
+      for (int a = 0; a < 3; ++a) force[a] += s.force[a];
+      if (p.dt > 0) (*p.work)[p.body] += s.power * p.dt;
+      if (p.condition && s.error.particle != ConditionSums::kNoError) report_error(*p.condition, s.error, v, p.te, p.step);
+    }
   }
 
   // The work sums and the last step's forces (checkpoints).
@@ -244,11 +259,12 @@ class TlsphConditions {
            std::to_string(k);
   }
 
-  ConditionSums velocity(Condition& c, const TlsphViews<D, Real>& v, double te, double dt) {
+  void velocity(Condition& c, const TlsphViews<D, Real>& v, double te, double dt, long step,
+                DeviceResults<B>& results) {
     VelocityConditionFunctor<D, Real> f{selected(c, v, te, dt), v.acceleration, v.velocity};
-    const ConditionSums s = transform_reduce<B>(0, Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{});
-    if (dt == 0.0) finish(c, s, v, te, 0);
-    return s;
+    pending_.push_back(
+        Pending{&c, nullptr, nullptr, c.body, &body_boundary_work_, te, dt, step,
+                results.reduce(Index(0), Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{})});
   }
 
   SelectedComponents<D, Real> selected(const Condition& c, const TlsphViews<D, Real>& v, double te, double dt) const {
@@ -263,23 +279,22 @@ class TlsphConditions {
                                        v.volume};
   }
 
-  void clamp(Clamp& k, const TlsphViews<D, Real>& v, double dt) {
+  void clamp(Clamp& k, const TlsphViews<D, Real>& v, double dt, long step, DeviceResults<B>& results) {
     ClampReactionFunctor<D, Real> f{raw(k.particles), Real(scene_->bodies[k.body].material.density),
                                     Real(dt),         v.volume,
                                     v.displacement,   v.velocity};
-    const ConditionSums s =
-        transform_reduce<B>(0, Index(k.particles.size()), f, ConditionSums::zero(), ConditionSumsCombine{});
-    for (int a = 0; a < 3; ++a) k.force[a] = s.force[a];
+    k.force = Point3{0, 0, 0};
+    // A clamp's reaction does no work (the particle does not move): power 0.
+    pending_.push_back(Pending{nullptr, nullptr, &k, k.body, &body_boundary_work_, 0.0, dt, step,
+                               results.reduce(Index(0), Index(k.particles.size()), f, ConditionSums::zero(),
+                                              ConditionSumsCombine{})});
   }
 
-  // Records the force sum; a run-time expression error stops the run with
-  // the condition, the component, the error and the particle.
-  void finish(Condition& c, const ConditionSums& s, const TlsphViews<D, Real>& v, double te, long step) {
-    for (int a = 0; a < 3; ++a) c.force[a] = s.force[a];
-    if (s.error.particle == ConditionSums::kNoError) return;
+  void report_error(const Condition& c, const ConditionError& error, const TlsphViews<D, Real>& v, double te,
+                    long step) {
     const char* axis[3] = {"x", "y", "z"};
-    const expr::Program& p = c.program[s.error.component];
-    const Index i = s.error.particle;
+    const expr::Program& p = c.program[error.component];
+    const Index i = error.particle;
     const Vec<D, Real> X = copy_element<B>(v.reference_position, i);
     std::string where = "x0 = (";
     for (int a = 0; a < D; ++a) where += (a ? ", " : "") + std::to_string(double(X.v[a]));
@@ -287,9 +302,22 @@ class TlsphConditions {
     const bool load = c.spec->type != ConditionSpec::Type::velocity;
     throw NumericalFailure(
         step, te, long(copy_element<B>(id_, i)), c.spec->body,
-        std::string(load ? "load '" : "velocity condition '") + c.spec->name + "' component " + axis[s.error.component],
-        p.describe_error(expr::Status(s.error.status), s.error.pc) + " at " + where);
+        std::string(load ? "load '" : "velocity condition '") + c.spec->name + "' component " + axis[error.component],
+        p.describe_error(expr::Status(error.status), error.pc) + " at " + where);
   }
+
+  // A reduction of this step whose sums wait in DeviceResults: the owner
+  // (one of condition, wall, clamp) and where its work goes.
+  struct Pending {
+    Condition* condition;
+    Wall* wall;
+    Clamp* clamp;
+    size_t body;
+    std::vector<double>* work;  // external or boundary work per body
+    double te, dt;
+    long step;
+    ResultSlot<ConditionSums> slot;
+  };
 
   const Scene* scene_ = nullptr;
   const Index* id_ = nullptr;
@@ -297,6 +325,7 @@ class TlsphConditions {
   std::vector<Wall> walls_;
   std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<Condition>> conditions_;
+  std::vector<Pending> pending_;
   std::vector<double> body_external_work_, body_boundary_work_;
 };
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/backend/device_results.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/rigid_body.hpp"
@@ -107,8 +108,9 @@ class TlsphContact {
   }
 
   // Contact forces at the half-step positions (t: start of the step); v and a
-  // of the touching particles change like under a load.
-  void apply(const TlsphViews<D, Real>& view, double t, double dt) {
+  // of the touching particles change like under a load. The sums (time-step
+  // bound, work, rigid-body forces) stay in `results` until collect().
+  void apply(const TlsphViews<D, Real>& view, double t, double dt, DeviceResults<B>& results) {
     if (!enabled_ || count_ == 0) return;
     place_rigid_bodies(t, dt);
     parallel_for<B>(
@@ -136,19 +138,29 @@ class TlsphContact {
                                          law_,
                                          Real(stiffness_factor_),
                                          raw(force_)};
-    inverse_step_ = double(transform_reduce<B>(0, count_, f, Real(0), thrust::maximum<Real>{}));
-    for (const Span& s : body_spans_) {
-      const ContactSums sum =
-          transform_reduce<B>(s.begin, s.end,
-                              ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_), Real(dt),
-                                                           view.velocity, view.acceleration},
-                              ContactSums::zero(), ContactSumsCombine{});
-      work_[s.index] += sum.power * dt;
-    }
+    pending_.clear();
+    pending_.dt = dt;
+    pending_.inverse_step = results.reduce(Index(0), count_, f, Real(0), thrust::maximum<Real>{});
+    for (const Span& s : body_spans_)
+      pending_.body.push_back(results.reduce(s.begin, s.end,
+                                             ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_),
+                                                                          Real(dt), view.velocity, view.acceleration},
+                                             ContactSums::zero(), ContactSumsCombine{}));
+    for (const Span& s : rigid_spans_)
+      pending_.rigid.push_back(results.reduce(s.begin, s.end, ContactForceSumFunctor<D, Real>{raw(force_)},
+                                              ContactSums::zero(), ContactSumsCombine{}));
+    pending_.ready = true;
+  }
+
+  // After results.fetch(): the step's contact step bound, work and forces.
+  void collect(const DeviceResults<B>& results) {
+    if (!pending_.ready) return;
+    pending_.ready = false;
+    inverse_step_ = double(results.get(pending_.inverse_step));
+    for (size_t k = 0; k < body_spans_.size(); ++k)
+      work_[body_spans_[k].index] += results.get(pending_.body[k]).power * pending_.dt;
     for (size_t r = 0; r < rigid_spans_.size(); ++r) {
-      const ContactSums sum =
-          transform_reduce<B>(rigid_spans_[r].begin, rigid_spans_[r].end, ContactForceSumFunctor<D, Real>{raw(force_)},
-                              ContactSums::zero(), ContactSumsCombine{});
+      const ContactSums sum = results.get(pending_.rigid[r]);
       for (int a = 0; a < 3; ++a) rigid_force_[r][a] = -sum.force[a];  // on the bodies
     }
   }
@@ -181,6 +193,17 @@ class TlsphContact {
   struct Span {
     size_t index;  // body or rigid body
     Index begin, end;
+  };
+  // This step's sums, waiting in DeviceResults.
+  struct Pending {
+    bool ready = false;
+    double dt = 0;
+    ResultSlot<Real> inverse_step;
+    std::vector<ResultSlot<ContactSums>> body, rigid;
+    void clear() {
+      body.clear();
+      rigid.clear();
+    }
   };
 
   // A table of at least 2 buckets per candidate (a power of two); cell edge
@@ -226,7 +249,7 @@ class TlsphContact {
         }
       }
     }
-    from_host<B>(host, placement_);
+    staging_.upload(host.data(), host.size(), raw(placement_));  // no host wait
   }
 
   bool enabled_ = false;
@@ -246,6 +269,8 @@ class TlsphContact {
   DeviceVector<B, int> group_;
   DeviceVector<B, ContactGroup<Real>> groups_;
   DeviceVector<B, RigidPlacement<D, Real>> placement_;
+  HostStaging<B> staging_;
+  Pending pending_;
   DeviceVector<B, std::int64_t> keys_;
 };
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/backend/device_results.hpp"
 #include "host/neighbors/reference_neighbor_list.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/scene.hpp"
@@ -103,7 +104,7 @@ class TlsphRelaxation {
 
   // The relaxation of the step [t, t + dt]: with probability p, both sweeps
   // with eta / p (seed 003 ref. [68], random choice), in the window only.
-  void apply(const TlsphViews<D, Real>& view, double t, double dt) {
+  void apply(const TlsphViews<D, Real>& view, double t, double dt, DeviceResults<B>& results) {
     if (!spec_.enabled || t < spec_.t_start || t >= spec_.t_end) return;
     const double u = double(random_() >> 11) * 0x1.0p-53;  // uniform in [0, 1), the same on every platform
     if (u >= spec_.random_ratio) return;
@@ -123,12 +124,18 @@ class TlsphRelaxation {
     for (int c = 0; c < kColours; ++c) parallel_for<B>(colour_first_[size_t(c)], colour_first_[size_t(c) + 1], f);
     f.forward = false;
     for (int c = kColours - 1; c >= 0; --c) parallel_for<B>(colour_first_[size_t(c)], colour_first_[size_t(c) + 1], f);
+    pending_.clear();
     for (size_t b = 0; b < ranges_.size(); ++b)
-      dissipation_[b] +=
-          transform_reduce<B>(ranges_[b].begin, ranges_[b].end,
-                              RelaxationWorkFunctor<D, Real>{raw(before_), view.velocity, view.acceleration,
-                                                             view.volume, Real(density_[b]), Real(dt)},
-                              0.0, thrust::plus<double>{});
+      pending_.push_back(results.reduce(ranges_[b].begin, ranges_[b].end,
+                                        RelaxationWorkFunctor<D, Real>{raw(before_), view.velocity, view.acceleration,
+                                                                       view.volume, Real(density_[b]), Real(dt)},
+                                        0.0, thrust::plus<double>{}));
+  }
+
+  // After results.fetch(): the energy this step's sweeps took.
+  void collect(const DeviceResults<B>& results) {
+    for (size_t b = 0; b < pending_.size(); ++b) dissipation_[b] += results.get(pending_[b]);
+    pending_.clear();
   }
 
   // Energy the relaxation took from body b so far, J (2-D: per metre of depth).
@@ -173,6 +180,7 @@ class TlsphRelaxation {
   DeviceVector<B, Vec<D, Real>> before_;  // v before the sweeps
   std::vector<BodyRange> ranges_;
   std::vector<double> density_, dissipation_;
+  std::vector<ResultSlot<double>> pending_;  // this step's dissipation per body, in DeviceResults
   long relaxed_steps_ = 0;
 };
 

@@ -28,12 +28,15 @@
 #include <utility>
 #include <vector>
 
+#include "host/backend/device_results.hpp"
+#include "host/backend/round_trips.hpp"
 #include "host/neighbors/reference_neighbor_list.hpp"
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
+#include "host/solver/stage_run.hpp"
 #include "host/solver/tlsph_body_kernels.hpp"
 #include "host/solver/tlsph_conditions.hpp"
 #include "host/solver/tlsph_contact.hpp"
@@ -150,8 +153,10 @@ class TlsphSolver final : public Solver {
                              "deformation_rate", "time_step"})
       if ((loads || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact") &&
           (scene.solver.relaxation.enabled || std::string(name) != "relaxation") &&
-          (has_fracture_ || std::string(name) != "phase_field"))
+          (has_fracture_ || std::string(name) != "phase_field")) {
         timers_.id(name);
+        stage_names_ += (stage_names_.empty() ? "" : ", ") + std::string(name);
+      }
     has_loads_ = loads;
     conditions_.compile(scene_);
   }
@@ -296,7 +301,10 @@ class TlsphSolver final : public Solver {
                       DeformationRateFunctor<D, Real>{v_.pairs, v_.displacement, v_.correction, v_.deformation_rate});
       parallel_for<B>(n, AddIdentityFunctor<D, Real>{v_.deformation_rate, v_.deformation_gradient});
     }
-    conditions_.apply_initial(v_);  // velocity conditions at t = 0, clamps
+    results_.clear();
+    conditions_.apply_initial(v_, results_);  // velocity conditions at t = 0, clamps
+    results_.fetch();
+    conditions_.collect(results_, v_);
 
     // Initial rates and forces, so that the first time step sees them.
     parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
@@ -326,9 +334,11 @@ class TlsphSolver final : public Solver {
   }
 
   void step() override {
+    const long round_trips_before = round_trips();
     const Index n = particles_.size();
     const double dt = dt_next_;
     const Real half_dt = Real(0.5 * dt);
+    results_.clear();
     run("stress", [&] {
       for (auto& k : bodies_) k->stress(v_, half_dt);
     });
@@ -340,25 +350,32 @@ class TlsphSolver final : public Solver {
         for (auto& k : bodies_) k->phase_field_rate(v_, Real(dt));
         for (auto& k : bodies_) k->phase_field_half_step(v_, half_dt);
       });
-    if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt); });
-    if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1); });
-    run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1); });
-    if (relaxation_.enabled()) run("relaxation", [&] { relaxation_.apply(v_, time_, dt); });
-    StepStatistics<Real> stats;
+    if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt, results_); });
+    if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1, results_); });
+    run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1, results_); });
+    if (relaxation_.enabled()) run("relaxation", [&] { relaxation_.apply(v_, time_, dt, results_); });
+    ResultSlot<StepStatistics<Real>> stats_slot;
     run("deformation_rate", [&] {
       RateHalfStepFunctor<D, Real> f{
           v_.pairs,        v_.velocity, v_.correction,       v_.deformation_rate, v_.deformation_gradient,
           v_.displacement, half_dt,     statistics_functor()};
-      stats = transform_reduce<B>(0, n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), n},
-                                  StepStatisticsCombine<Real>{});
+      stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), n},
+                                   StepStatisticsCombine<Real>{});
     });
+    // The step's one synchronisation: every sum of the step comes to the host.
     run("time_step", [&] {
+      results_.fetch();
+      conditions_.collect(results_, v_);
+      contact_.collect(results_);
+      relaxation_.collect(results_);
+      const StepStatistics<Real> stats = results_.get(stats_slot);
       time_ += dt;
       ++steps_;
       if (stats.first_bad < n) fail(stats.first_bad);
       update_time_step(stats);
     });
     clock_.collect(timers_);
+    timers_.add_round_trips(round_trips() - round_trips_before);
   }
 
   void save_state(StateArchive& a) override {
@@ -542,11 +559,14 @@ class TlsphSolver final : public Solver {
     return props_[b];
   }
 
+  // One timed stage; a device error names it (backend_error.hpp), and in
+  // the checked mode (MFSD_CUDA_SYNC_CHECK=1) the stage ends with a
+  // synchronisation so that its kernels' faults are found in it.
   template <class F>
   void run(const char* name, F&& f) {
     const int id = timers_.id(name);
     clock_.start(id);
-    f();
+    run_stage<B>(name, stage_names_, std::forward<F>(f));
     clock_.stop(id, timers_);
   }
 
@@ -843,6 +863,8 @@ class TlsphSolver final : public Solver {
   TlsphViews<D, Real> v_{};
   StageClock<B> clock_;
   StageTimers timers_;
+  DeviceResults<B> results_;  // the step's sums until its one synchronisation
+  std::string stage_names_;   // the stages of a step, for deferred device errors
   SetupReport report_;
   double time_ = 0, dt_next_ = 0;
   long steps_ = 0;

@@ -89,3 +89,37 @@ TEST_P(CpuBackend, SortGatherAndScan) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Threads, CpuBackend, ::testing::Values(1, 2));
+
+namespace {
+// Counts its calls per element (a side effect a pure transform_reduce may not have).
+struct CountingSquare {
+  Index* calls;
+  double operator()(Index i) const {
+    ++calls[i];
+    return double(i) * double(i);
+  }
+};
+}  // namespace
+
+TEST_P(CpuBackend, ParallelReduceCallsEachIndexExactlyOnce) {
+  const Index n = 10007;
+  DeviceVector<Cpu, Index> calls(size_t(n), 0);
+  DeviceVector<Cpu, double> out(1, -1.0);
+  parallel_reduce<Cpu>(Index(3), n, CountingSquare{raw(calls)}, 0.0, Plus{}, raw(out));
+  const auto c = to_host<Cpu>(calls);
+  for (Index i = 0; i < n; ++i) ASSERT_EQ(c[size_t(i)], i < 3 ? 0 : 1) << "element " << i;
+  double expected = 0;
+  for (Index i = 3; i < n; ++i) expected += double(i) * double(i);
+  EXPECT_NEAR(to_host<Cpu>(out)[0], expected, 1e-12 * expected);
+  // The same result with the same thread count, run after run.
+  DeviceVector<Cpu, double> again(1, -1.0);
+  parallel_reduce<Cpu>(Index(3), n, CountingSquare{raw(calls)}, 0.0, Plus{}, raw(again));
+  EXPECT_EQ(to_host<Cpu>(again)[0], to_host<Cpu>(out)[0]);
+}
+
+TEST_P(CpuBackend, ParallelReduceOfAnEmptyRangeIsInit) {
+  DeviceVector<Cpu, Index> calls(4, 0);
+  DeviceVector<Cpu, double> out(1, -1.0);
+  parallel_reduce<Cpu>(Index(2), Index(2), CountingSquare{raw(calls)}, -7.5, Max{}, raw(out));
+  EXPECT_EQ(to_host<Cpu>(out)[0], -7.5);
+}

@@ -1,0 +1,68 @@
+// A step waits for the device once: every sum of the step (conditions' forces
+// and work, contact's step limit and rigid-body loads, relaxation's work, the
+// time-step maxima) lands in backend memory and comes to the host in one copy
+// (issue 20; docs/architecture.md, "What synchronises"). The algorithms count
+// their host waits the same way on every backend, so this CPU test asserts
+// the count the GPU sees, for every shipped scene and every test scene.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "host/backend/round_trips.hpp"
+#include "host/scene/particle_generator.hpp"
+#include "host/scene/scene_reader.hpp"
+#include "host/solver/solver.hpp"
+
+using namespace mfsd;
+
+namespace {
+
+// Smaller resolutions for the scenes whose default is large.
+const std::map<std::string, std::vector<std::string>> kSmaller = {
+    {"cantilever_plate_3d.json", {"constants.dp=0.004"}},
+    {"crack_branching_2d.json", {"constants.dp=0.5e-3"}},
+    {"four_point_bending_3d.json", {"constants.dp=2e-3", "constants.eps0=0.5e-3"}},
+    {"kalthoff_winkler_2d.json", {"constants.dp=1e-3", "constants.eps0=0.25e-3"}},
+    {"taylor_bar_3d_square.json", {"constants.H_over_dp=5"}},
+    {"taylor_bar_seed001_3d.json", {"constants.R_over_dp=4"}},
+    {"twisting_column_seed001_3d.json", {"constants.dp=0.25"}},
+};
+
+std::vector<std::filesystem::path> scenes() {
+  std::vector<std::filesystem::path> files;
+  for (const char* dir : {"/configs", "/tests/regression/scenes"})
+    for (const auto& e : std::filesystem::directory_iterator(std::string(MFSD_SOURCE_DIR) + dir))
+      if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace
+
+TEST(RoundTrips, OnePerStepInEveryScene) {
+  const long kSteps = 6;
+  int scenes_run = 0;
+  for (const auto& path : scenes()) {
+    SCOPED_TRACE(path.filename().string());
+    const auto it = kSmaller.find(path.filename().string());
+    const SceneDocument doc =
+        load_scene_file(path.string(), it == kSmaller.end() ? std::vector<std::string>{} : it->second);
+    const InitialParticles particles = generate_particles(doc.scene);
+    ASSERT_LT(particles.size(), 60000u) << "add a smaller resolution for this scene to kSmaller";
+    SolverOptions o;
+    o.threads = 1;
+    auto solver = make_solver(doc.scene, particles, o);
+    solver->initialize();
+    solver->reset_timers();
+    const long before = round_trips();
+    for (long s = 0; s < kSteps; ++s) solver->step();
+    // The process-wide count and the solver's own (timing.json's) agree.
+    EXPECT_EQ(round_trips() - before, kSteps);
+    EXPECT_EQ(solver->timers().round_trips(), kSteps);
+    ++scenes_run;
+  }
+  EXPECT_GE(scenes_run, 20);
+}
