@@ -87,7 +87,7 @@ def triad(threads, repeats=20):
 
 
 def fma_peak():
-    """Compute roof of one core (bench/fma_peak.cpp): 4-wide FMA rate and clock; None where not built (non-x86)."""
+    """Compute roof of one core (bench/fma_peak.cpp): 4-wide FMA rate and clock; None where not built (non-x86, or MFSD_NATIVE=OFF)."""
     if not os.path.exists(FMA_PEAK):
         return None
     return json.loads(subprocess.run([FMA_PEAK], capture_output=True, text=True, check=True).stdout)
