@@ -10,10 +10,21 @@ import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+# (name, scene, --set overrides, extra arguments). The last six cover what the
+# first three do not: walls and J2 (Taylor bar), contact between bodies,
+# rigid bodies with contact, traction loads with the phase field, dynamic
+# relaxation, clamps with a rigid punch.
 CASES = [
-    ("oscillating_plate", "configs/oscillating_plate_2d.json", ["solver.end_time=0.3"]),
-    ("bending_column", "configs/bending_column_3d.json", ["solver.end_time=0.5", "constants.H_over_dp=6"]),
-    ("twisting_column", "configs/twisting_column_3d.json", ["solver.end_time=0.2", "constants.H_over_dp=6"]),
+    ("oscillating_plate", "configs/oscillating_plate_2d.json", ["solver.end_time=0.3"], []),
+    ("bending_column", "configs/bending_column_3d.json", ["solver.end_time=0.5", "constants.H_over_dp=6"], []),
+    ("twisting_column", "configs/twisting_column_3d.json", ["solver.end_time=0.2", "constants.H_over_dp=6"], []),
+    ("taylor_bar", "configs/taylor_bar_2d.json", ["constants.H_over_dp=10"], []),
+    ("colliding_blocks", "tests/regression/scenes/colliding_blocks_2d.json", [], []),
+    ("oobleck_octopus", "configs/oobleck_octopus_2d.json", [], ["--max-steps", "2000"]),
+    ("crack_branching", "configs/crack_branching_2d.json",
+     ["constants.dp=1e-3", "constants.eps0=0.25e-3", "solver.end_time=3e-5"], []),
+    ("hanging_column", "tests/regression/scenes/hanging_column_2d.json", [], ["--max-steps", "2000"]),
+    ("punched_block", "tests/regression/scenes/punched_block_2d.json", [], ["--max-steps", "2000"]),
 ]
 
 
@@ -26,11 +37,11 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     worst_all = 0.0
-    for name, scene, sets in CASES:
+    for name, scene, sets, extra in CASES:
         outs = []
         for tag, binary in (("old", sys.argv[1]), ("new", sys.argv[2])):
             out = os.path.join(ROOT, "out", "compare", f"{name}_{tag}")
-            cmd = [binary, "run", os.path.join(ROOT, scene), "-o", out, "-q", "--threads", "1"]
+            cmd = [binary, "run", os.path.join(ROOT, scene), "-o", out, "-q", "--threads", "1"] + extra
             for s in sets:
                 cmd += ["--set", s]
             subprocess.run(cmd, check=True)

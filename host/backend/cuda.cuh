@@ -43,7 +43,7 @@ std::string demangled_name(const char* mangled);
 
 // Temporary storage of Thrust's algorithms, kept for reuse instead of a
 // cudaMalloc/cudaFree pair per call (cudaFree synchronises the device).
-// Blocks are cached by size and returned to the device at exit.
+// CUB's CachingDeviceAllocator keeps them (bins in cuda_device.cu).
 class CachingAllocator {
  public:
   using value_type = char;

@@ -4,10 +4,10 @@
 #include <cuda_runtime.h>
 #include <cxxabi.h>
 
+#include <cub/util_allocator.cuh>
+
 #include <cstdlib>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "host/backend/cuda.cuh"
@@ -31,54 +31,26 @@ std::string demangled_name(const char* mangled) {
 
 namespace {
 
-// Free blocks by size; blocks in use by address. One allocator per process
-// (a solver's temporaries are allocated and freed by its own thread).
-struct Cache {
-  std::mutex mutex;
-  std::multimap<size_t, char*> free;
-  std::map<char*, size_t> used;
-  ~Cache() {
-    for (auto& [bytes, p] : free) cudaFree(p);
-  }
-};
-Cache& cache() {
-  static Cache c;
-  return c;
+// CUB's caching allocator with power-of-two bins from 1 KiB to 2 GiB (CUB's
+// default bins stop at 2 MiB, below a sort's temporaries at a million
+// particles), no limit on the bytes it keeps (it frees its cache and retries
+// when the device runs out), kept until exit (skip_cleanup: at static
+// destruction the CUDA context may already be gone). Thread-safe.
+cub::CachingDeviceAllocator& cub_cache() {
+  static auto* a = new cub::CachingDeviceAllocator(2, 10, 31, cub::CachingDeviceAllocator::INVALID_SIZE, true);
+  return *a;
 }
 
 }  // namespace
 
 char* CachingAllocator::allocate(std::ptrdiff_t bytes) {
-  Cache& c = cache();
-  std::lock_guard<std::mutex> lock(c.mutex);
-  const size_t n = size_t(bytes);
-  auto it = c.free.lower_bound(n);
-  if (it != c.free.end() && it->first <= 2 * n + 4096) {  // reuse a block of about this size
-    char* p = it->second;
-    c.used[p] = it->first;
-    c.free.erase(it);
-    return p;
-  }
-  char* p = nullptr;
-  cudaError_t e = cudaMalloc(&p, n);
-  if (e != cudaSuccess) {  // return the cache to the device and try once more
-    cudaGetLastError();
-    for (auto& [size, q] : c.free) cudaFree(q);
-    c.free.clear();
-    cuda_check(cudaMalloc(&p, n), "temporary allocation");
-  }
-  c.used[p] = n;
-  return p;
+  void* p = nullptr;
+  cuda_check(cub_cache().DeviceAllocate(&p, size_t(bytes)), "temporary allocation");
+  return static_cast<char*>(p);
 }
 
-void CachingAllocator::deallocate(char* p, size_t) {
-  Cache& c = cache();
-  std::lock_guard<std::mutex> lock(c.mutex);
-  auto it = c.used.find(p);
-  if (it == c.used.end()) return;
-  c.free.emplace(it->second, p);
-  c.used.erase(it);
-}
+// Called from destructors: never throws (a device fault shows at the next check).
+void CachingAllocator::deallocate(char* p, size_t) { (void)cub_cache().DeviceFree(p); }
 
 CachingAllocator& caching_allocator() {
   static CachingAllocator a;
