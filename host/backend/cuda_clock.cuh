@@ -42,7 +42,7 @@ class StageClock<Cuda> {
       cuda_check(cudaEventSynchronize(r.end), "event synchronize");
       float ms = 0;
       cuda_check(cudaEventElapsedTime(&ms, r.begin, r.end), "event elapsed");
-      timers.add(int(k), 1e-3 * ms);
+      timers.add(int(k), 1e-3 * double(ms));
       r.pending = false;
     }
   }

@@ -7,6 +7,7 @@
 #pragma once
 #include <cstddef>
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <type_traits>
 #include <vector>
@@ -45,11 +46,11 @@ class DeviceResults {
   // One copy of every slot of this step to the host (a round trip). A
   // device fault of any kernel queued before shows here: BackendError, deferred.
   void fetch() {
-    host_.resize(used_ / sizeof(double));
+    host_.resize(used_ / sizeof(Word));
     if (used_ == 0) return;
     count_round_trip();
     try {
-      thrust::copy(buffer_.begin(), buffer_.begin() + std::ptrdiff_t(used_ / sizeof(double)), host_.begin());
+      thrust::copy(buffer_.begin(), buffer_.begin() + std::ptrdiff_t(used_ / sizeof(Word)), host_.begin());
     } catch (const thrust::system_error& e) {
       throw BackendError(std::string("device error: ") + e.what(), true);
     }
@@ -70,11 +71,14 @@ class DeviceResults {
     used_ += (bytes + kAlign - 1) / kAlign * kAlign;
     // Grows at the first steps only; stream order keeps earlier results
     // (the copy runs after the kernels that wrote them).
-    if (used_ > buffer_.size() * sizeof(double)) buffer_.resize(std::max<size_t>(2 * used_, 4096) / sizeof(double));
+    if (used_ > buffer_.size() * sizeof(Word)) buffer_.resize(std::max<size_t>(2 * used_, 4096) / sizeof(Word));
     return offset;
   }
-  DeviceVector<B, double> buffer_;
-  std::vector<double> host_;
+  // Raw 8-byte words, not double: float runs keep double out of every kernel,
+  // the buffer's fill and copy included (scripts/check_float_ptx.py).
+  using Word = std::uint64_t;
+  DeviceVector<B, Word> buffer_;
+  std::vector<Word> host_;
   size_t used_ = 0;
 };
 

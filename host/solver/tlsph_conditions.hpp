@@ -120,9 +120,8 @@ class TlsphConditions {
                              Real(1.0 / double(n)),
                              v.velocity,
                              v.acceleration};
-      pending_.push_back(
-          Pending{c.get(), nullptr, nullptr, c->body, &body_external_work_, te, dt, step,
-                  results.reduce(Index(0), n, f, ConditionSums::zero(), ConditionSumsCombine{})});
+      pending_.push_back(Pending{c.get(), nullptr, nullptr, c->body, &body_external_work_, te, dt, step,
+                                 results.reduce(Index(0), n, f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
     }
   }
 
@@ -150,9 +149,9 @@ class TlsphConditions {
                                v.volume,
                                v.velocity};
         for (int a = 0; a < D; ++a) f.point.v[a] = Real(w.spec->point[a]), f.normal.v[a] = Real(w.spec->normal[a]);
-        pending_.push_back(
-            Pending{nullptr, &w, nullptr, b, &body_boundary_work_, te, dt, step,
-                    results.reduce(Index(0), ranges_[b].size(), f, ConditionSums::zero(), ConditionSumsCombine{})});
+        pending_.push_back(Pending{
+            nullptr, &w, nullptr, b, &body_boundary_work_, te, dt, step,
+            results.reduce(Index(0), ranges_[b].size(), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
       }
     }
     for (auto& k : clamps_) clamp(k, v, dt, step, results);
@@ -173,11 +172,11 @@ class TlsphConditions {
     std::vector<Pending> pending;
     pending.swap(pending_);
     for (const Pending& p : pending) {
-      const ConditionSums s = results.get(p.slot);
+      const ConditionSums<Real> s = results.get(p.slot);
       Point3& force = p.condition ? p.condition->force : p.wall ? p.wall->force : p.clamp->force;
-      for (int a = 0; a < 3; ++a) force[a] += s.force[a];
-      if (p.dt > 0) (*p.work)[p.body] += s.power * p.dt;
-      if (p.condition && s.error.particle != ConditionSums::kNoError) report_error(*p.condition, s.error, v, p.te, p.step);
+      for (int a = 0; a < 3; ++a) force[a] += double(s.force[a]);
+      if (p.dt > 0) (*p.work)[p.body] += double(s.power) * p.dt;
+      if (p.condition && s.error.particle != kNoConditionError) report_error(*p.condition, s.error, v, p.te, p.step);
     }
   }
 
@@ -264,7 +263,7 @@ class TlsphConditions {
     VelocityConditionFunctor<D, Real> f{selected(c, v, te, dt), v.acceleration, v.velocity};
     pending_.push_back(
         Pending{&c, nullptr, nullptr, c.body, &body_boundary_work_, te, dt, step,
-                results.reduce(Index(0), Index(c.count), f, ConditionSums::zero(), ConditionSumsCombine{})});
+                results.reduce(Index(0), Index(c.count), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
   }
 
   SelectedComponents<D, Real> selected(const Condition& c, const TlsphViews<D, Real>& v, double te, double dt) const {
@@ -285,9 +284,9 @@ class TlsphConditions {
                                     v.displacement,   v.velocity};
     k.force = Point3{0, 0, 0};
     // A clamp's reaction does no work (the particle does not move): power 0.
-    pending_.push_back(Pending{nullptr, nullptr, &k, k.body, &body_boundary_work_, 0.0, dt, step,
-                               results.reduce(Index(0), Index(k.particles.size()), f, ConditionSums::zero(),
-                                              ConditionSumsCombine{})});
+    pending_.push_back(Pending{
+        nullptr, nullptr, &k, k.body, &body_boundary_work_, 0.0, dt, step,
+        results.reduce(Index(0), Index(k.particles.size()), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
   }
 
   void report_error(const Condition& c, const ConditionError& error, const TlsphViews<D, Real>& v, double te,
@@ -316,7 +315,7 @@ class TlsphConditions {
     std::vector<double>* work;  // external or boundary work per body
     double te, dt;
     long step;
-    ResultSlot<ConditionSums> slot;
+    ResultSlot<ConditionSums<Real>> slot;
   };
 
   const Scene* scene_ = nullptr;

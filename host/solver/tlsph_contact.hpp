@@ -117,7 +117,7 @@ class TlsphContact {
         count_, ContactCandidateFunctor<D, Real>{particles_, raw(particle_), view.reference_position, view.displacement,
                                                  view.velocity, view.acceleration, Real(dt), raw(marker_position_),
                                                  raw(group_), first_rigid_group_, raw(placement_), raw(x_), raw(v_)});
-    const ContactHashGrid<D> grid = make_grid();
+    const ContactHashGrid<D, Real> grid = make_grid();
     parallel_for<B>(count_, ContactKeyFunctor<D, Real>{grid, raw(x_), raw(keys_)});
     sequence<B, Index>(order_);
     stable_sort_by_key<B, std::int64_t, Index>(keys_, order_);
@@ -145,10 +145,10 @@ class TlsphContact {
       pending_.body.push_back(results.reduce(s.begin, s.end,
                                              ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_),
                                                                           Real(dt), view.velocity, view.acceleration},
-                                             ContactSums::zero(), ContactSumsCombine{}));
+                                             ContactSums<Real>::zero(), ContactSumsCombine{}));
     for (const Span& s : rigid_spans_)
       pending_.rigid.push_back(results.reduce(s.begin, s.end, ContactForceSumFunctor<D, Real>{raw(force_)},
-                                              ContactSums::zero(), ContactSumsCombine{}));
+                                              ContactSums<Real>::zero(), ContactSumsCombine{}));
     pending_.ready = true;
   }
 
@@ -158,10 +158,10 @@ class TlsphContact {
     pending_.ready = false;
     inverse_step_ = double(results.get(pending_.inverse_step));
     for (size_t k = 0; k < body_spans_.size(); ++k)
-      work_[body_spans_[k].index] += results.get(pending_.body[k]).power * pending_.dt;
+      work_[body_spans_[k].index] += double(results.get(pending_.body[k]).power) * pending_.dt;
     for (size_t r = 0; r < rigid_spans_.size(); ++r) {
-      const ContactSums sum = results.get(pending_.rigid[r]);
-      for (int a = 0; a < 3; ++a) rigid_force_[r][a] = -sum.force[a];  // on the bodies
+      const ContactSums<Real> sum = results.get(pending_.rigid[r]);
+      for (int a = 0; a < 3; ++a) rigid_force_[r][a] = -double(sum.force[a]);  // on the bodies
     }
   }
 
@@ -199,7 +199,7 @@ class TlsphContact {
     bool ready = false;
     double dt = 0;
     ResultSlot<Real> inverse_step;
-    std::vector<ResultSlot<ContactSums>> body, rigid;
+    std::vector<ResultSlot<ContactSums<Real>>> body, rigid;
     void clear() {
       body.clear();
       rigid.clear();
@@ -209,7 +209,7 @@ class TlsphContact {
   // A table of at least 2 buckets per candidate (a power of two); cell edge
   // = the reach of the largest contact distance (pairs about to touch enter
   // the time-step bound).
-  ContactHashGrid<D> make_grid() {
+  ContactHashGrid<D, Real> make_grid() {
     std::uint64_t buckets = 64;
     while (buckets < 2 * std::uint64_t(count_)) buckets *= 2;
     if (start_.size() < buckets) {
@@ -217,7 +217,7 @@ class TlsphContact {
       end_.resize(buckets);
     }
     cells_ = size_t(buckets);
-    return ContactHashGrid<D>{1.0 / (kContactRateReach * max_spacing_), buckets - 1};
+    return ContactHashGrid<D, Real>{Real(1.0 / (kContactRateReach * max_spacing_)), buckets - 1};
   }
 
   // x = A X + b at t + dt/2; rates from the motion over the step.

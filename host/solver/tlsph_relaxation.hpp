@@ -129,12 +129,12 @@ class TlsphRelaxation {
       pending_.push_back(results.reduce(ranges_[b].begin, ranges_[b].end,
                                         RelaxationWorkFunctor<D, Real>{raw(before_), view.velocity, view.acceleration,
                                                                        view.volume, Real(density_[b]), Real(dt)},
-                                        0.0, thrust::plus<double>{}));
+                                        Real(0), thrust::plus<Real>{}));
   }
 
   // After results.fetch(): the energy this step's sweeps took.
   void collect(const DeviceResults<B>& results) {
-    for (size_t b = 0; b < pending_.size(); ++b) dissipation_[b] += results.get(pending_[b]);
+    for (size_t b = 0; b < pending_.size(); ++b) dissipation_[b] += double(results.get(pending_[b]));
     pending_.clear();
   }
 
@@ -180,7 +180,7 @@ class TlsphRelaxation {
   DeviceVector<B, Vec<D, Real>> before_;  // v before the sweeps
   std::vector<BodyRange> ranges_;
   std::vector<double> density_, dissipation_;
-  std::vector<ResultSlot<double>> pending_;  // this step's dissipation per body, in DeviceResults
+  std::vector<ResultSlot<Real>> pending_;  // this step's dissipation per body, in DeviceResults
   long relaxed_steps_ = 0;
 };
 

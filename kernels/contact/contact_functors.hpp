@@ -86,13 +86,13 @@ struct ContactCandidateFunctor {
 // candidate, put the octopus showcase's whole body into a handful of cells
 // once a particle had escaped: 15 ms per step instead of 0.3). Two cells may
 // share a bucket; a visitor checks the candidate's own cell.
-template <int D>
+template <int D, class Real>
 struct ContactHashGrid {
-  double inv_cell;
+  Real inv_cell;       // in Real: float runs hash in float (docs/floating-point.md)
   std::uint64_t mask;  // buckets - 1
 
-  MFSD_HD void cell(const double* x, long long* c) const {
-    for (int a = 0; a < D; ++a) c[a] = (long long)math::floor(x[a] * inv_cell);
+  MFSD_HD void cell(const Vec<D, Real>& x, long long* c) const {
+    for (int a = 0; a < D; ++a) c[a] = (long long)math::floor(x.v[a] * inv_cell);
   }
   MFSD_HD std::int64_t bucket(const long long* c) const {
     std::uint64_t h = std::uint64_t(c[0]) * 73856093ull ^ std::uint64_t(c[1]) * 19349663ull;
@@ -102,20 +102,13 @@ struct ContactHashGrid {
 };
 
 template <int D, class Real>
-MFSD_HD inline void contact_cell(const ContactHashGrid<D>& grid, const Vec<D, Real>& x, long long* c) {
-  double xd[D];
-  for (int a = 0; a < D; ++a) xd[a] = double(x.v[a]);
-  grid.cell(xd, c);
-}
-
-template <int D, class Real>
 struct ContactKeyFunctor {
-  ContactHashGrid<D> grid;
+  ContactHashGrid<D, Real> grid;
   const Vec<D, Real>* x;
   std::int64_t* key;
   MFSD_HD void operator()(Index c) const {
     long long cell[D];
-    contact_cell(grid, x[c], cell);
+    grid.cell(x[c], cell);
     key[c] = grid.bucket(cell);
   }
 };
@@ -129,7 +122,7 @@ constexpr double kContactRateReach = 1.6;
 
 template <int D, class Real>
 struct ContactForceFunctor {
-  ContactHashGrid<D> grid;
+  ContactHashGrid<D, Real> grid;
   const Index* start;  // per bucket, into `order`
   const Index* end;
   const Index* order;  // cell-sorted position -> candidate
@@ -150,7 +143,7 @@ struct ContactForceFunctor {
     const ContactGroup<Real> Gi = groups[gi];
     const Real mi = mass[i];
     long long c[D];
-    contact_cell(grid, xi, c);
+    grid.cell(xi, c);
     Vec<D, Real> f = Vec<D, Real>::zero();
     ContactRates<Real> rates{Real(0), Real(0)};
     long long cc[D];
@@ -160,7 +153,7 @@ struct ContactForceFunctor {
         const Index j = order[s];
         if (j == i) continue;
         long long cj[D];
-        contact_cell(grid, x[j], cj);
+        grid.cell(x[j], cj);
         bool same = true;
         for (int a = 0; a < D; ++a) same = same && cj[a] == cc[a];
         if (!same) continue;  // another cell in this bucket
@@ -171,7 +164,7 @@ struct ContactForceFunctor {
         const Vec<D, Real> r = xi - x[j];
         const Real d0 = Real(0.5) * (Gi.spacing + Gj.spacing);
         const Real r2 = squared_norm(r);
-        const Real reach = kContactRateReach * d0;
+        const Real reach = Real(kContactRateReach) * d0;
         if (!(r2 < reach * reach) || r2 == Real(0)) continue;
         Real k = stiffness_factor * contact_modulus(Gi.modulus, Gj.modulus);
         if (D == 3) k *= d0;  // k = kappa M dp^(D-2)
@@ -195,16 +188,19 @@ struct ContactForceFunctor {
   }
 };
 
-// Power and force sum of the contact on one body (or a rigid body's markers).
+// Power and force sum of the contact on one body (or a rigid body's markers),
+// in Real like every per-step sum (docs/floating-point.md).
+template <class Real>
 struct ContactSums {
-  double power;
-  double force[3];
-  MFSD_HD static ContactSums zero() { return ContactSums{0.0, {0.0, 0.0, 0.0}}; }
+  Real power;
+  Real force[3];
+  MFSD_HD static ContactSums zero() { return ContactSums{Real(0), {Real(0), Real(0), Real(0)}}; }
 };
 
 struct ContactSumsCombine {
-  MFSD_HD ContactSums operator()(const ContactSums& a, const ContactSums& b) const {
-    ContactSums r;
+  template <class Real>
+  MFSD_HD ContactSums<Real> operator()(const ContactSums<Real>& a, const ContactSums<Real>& b) const {
+    ContactSums<Real> r;
     r.power = a.power + b.power;
     for (int k = 0; k < 3; ++k) r.force[k] = a.force[k] + b.force[k];
     return r;
@@ -221,12 +217,12 @@ struct ContactApplyFunctor {
   Vec<D, Real>* velocity;
   Vec<D, Real>* acceleration;
 
-  MFSD_HD ContactSums operator()(Index c) const {
-    ContactSums s = ContactSums::zero();
+  MFSD_HD ContactSums<Real> operator()(Index c) const {
+    ContactSums<Real> s = ContactSums<Real>::zero();
     const Vec<D, Real> f = force[c];
     const Index p = particle[c];
     s.power = add_step_force(f, mass[c], dt, velocity[p], acceleration[p]);
-    for (int a = 0; a < D; ++a) s.force[a] = double(f.v[a]);
+    for (int a = 0; a < D; ++a) s.force[a] = f.v[a];
     return s;
   }
 };
@@ -236,9 +232,9 @@ struct ContactApplyFunctor {
 template <int D, class Real>
 struct ContactForceSumFunctor {
   const Vec<D, Real>* force;
-  MFSD_HD ContactSums operator()(Index c) const {
-    ContactSums s = ContactSums::zero();
-    for (int a = 0; a < D; ++a) s.force[a] = double(force[c].v[a]);
+  MFSD_HD ContactSums<Real> operator()(Index c) const {
+    ContactSums<Real> s = ContactSums<Real>::zero();
+    for (int a = 0; a < D; ++a) s.force[a] = force[c].v[a];
     return s;
   }
 };

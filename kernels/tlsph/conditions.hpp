@@ -69,24 +69,30 @@ struct ComponentValue {
 };
 
 struct ConditionError {
-  Index particle;  // kNoError when none
+  Index particle;  // kNoConditionError when none
   int component;
   int pc;
   int status;  // expr::Status
 };
 
-struct ConditionSums {
-  double power;          // W (per unit thickness in 2-D)
-  double force[3];       // N: sum of applied forces (loads) or reactions (velocity)
-  ConditionError error;  // the lowest-indexed particle with an error
-  static constexpr Index kNoError = Index(0x7fffffff);
+constexpr Index kNoConditionError = Index(0x7fffffff);
 
-  MFSD_HD static ConditionSums zero() { return ConditionSums{0.0, {0.0, 0.0, 0.0}, {kNoError, 0, 0, 0}}; }
+// In Real like every per-step sum (docs/floating-point.md).
+template <class Real>
+struct ConditionSums {
+  Real power;            // W (per unit thickness in 2-D)
+  Real force[3];         // N: sum of applied forces (loads) or reactions (velocity)
+  ConditionError error;  // the lowest-indexed particle with an error (kNoConditionError when none)
+
+  MFSD_HD static ConditionSums zero() {
+    return ConditionSums{Real(0), {Real(0), Real(0), Real(0)}, {kNoConditionError, 0, 0, 0}};
+  }
 };
 
 struct ConditionSumsCombine {
-  MFSD_HD ConditionSums operator()(const ConditionSums& a, const ConditionSums& b) const {
-    ConditionSums r;
+  template <class Real>
+  MFSD_HD ConditionSums<Real> operator()(const ConditionSums<Real>& a, const ConditionSums<Real>& b) const {
+    ConditionSums<Real> r;
     r.power = a.power + b.power;
     for (int k = 0; k < 3; ++k) r.force[k] = a.force[k] + b.force[k];
     r.error = b.error.particle < a.error.particle ? b.error : a.error;
@@ -150,11 +156,12 @@ struct SelectedComponents {
 // Adds to `s` the reaction of a constraint that changed a velocity component
 // from v_before to v_after within the step (v_start: its value at t^n): the
 // force m (v_after - v_before)/dt and its power at the mid-step velocity.
-MFSD_HD inline void add_reaction(ConditionSums& s, int a, double m, double v_start, double v_before, double v_after,
-                                 double dt) {
-  const double force = m * (v_after - v_before) / dt;
+template <class Real>
+MFSD_HD inline void add_reaction(ConditionSums<Real>& s, int a, Real m, Real v_start, Real v_before, Real v_after,
+                                 Real dt) {
+  const Real force = m * (v_after - v_before) / dt;
   s.force[a] += force;
-  s.power += force * 0.5 * (v_start + v_after);
+  s.power += force * Real(0.5) * (v_start + v_after);
 }
 
 enum class LoadType : int { point, traction, acceleration };
@@ -168,8 +175,8 @@ struct LoadFunctor {
   Vec<D, Real>* velocity;
   Vec<D, Real>* acceleration;
 
-  MFSD_HD ConditionSums operator()(Index k) const {
-    ConditionSums s = ConditionSums::zero();
+  MFSD_HD ConditionSums<Real> operator()(Index k) const {
+    ConditionSums<Real> s = ConditionSums<Real>::zero();
     Index i;
     Real value[3] = {Real(0), Real(0), Real(0)};
     int mask = 0;
@@ -186,7 +193,7 @@ struct LoadFunctor {
         f.v[a] = value[a] * mass;  // type 3 [m/s^2]
     }
     s.power = add_step_force(f, mass, dt, velocity[i], acceleration[i]);
-    for (int a = 0; a < D; ++a) s.force[a] = double(f.v[a]);
+    for (int a = 0; a < D; ++a) s.force[a] = f.v[a];
     return s;
   }
 };
@@ -197,8 +204,8 @@ struct VelocityConditionFunctor {
   const Vec<D, Real>* acceleration;  // internal + loads, for v^n
   Vec<D, Real>* velocity;
 
-  MFSD_HD ConditionSums operator()(Index k) const {
-    ConditionSums s = ConditionSums::zero();
+  MFSD_HD ConditionSums<Real> operator()(Index k) const {
+    ConditionSums<Real> s = ConditionSums<Real>::zero();
     Index i;
     Real value[3] = {Real(0), Real(0), Real(0)};
     int mask = 0;
@@ -207,9 +214,7 @@ struct VelocityConditionFunctor {
     Vec<D, Real> v = velocity[i];
     for (int a = 0; a < D; ++a) {
       if (!(mask & (1 << a))) continue;
-      if (dt > Real(0))
-        add_reaction(s, a, double(sel.mass(i)), double(v.v[a] - acceleration[i].v[a] * dt), double(v.v[a]),
-                     double(value[a]), double(dt));
+      if (dt > Real(0)) add_reaction(s, a, sel.mass(i), v.v[a] - acceleration[i].v[a] * dt, v.v[a], value[a], dt);
       v.v[a] = value[a];
     }
     velocity[i] = v;
@@ -238,8 +243,8 @@ struct WallFunctor {
   const Real* volume;
   Vec<D, Real>* velocity;
 
-  MFSD_HD ConditionSums operator()(Index k) const {
-    ConditionSums s = ConditionSums::zero();
+  MFSD_HD ConditionSums<Real> operator()(Index k) const {
+    ConditionSums<Real> s = ConditionSums<Real>::zero();
     const Index i = begin + k;
     const Vec<D, Real> x = reference_position[i] + displacement[i];
     const Real gap = dot(x - point, normal) - half_dp;
@@ -248,9 +253,8 @@ struct WallFunctor {
     if (!(vn < vn_min)) return s;
     const Vec<D, Real> v_new = v + normal * (vn_min - vn);
     velocity[i] = v_new;
-    const double m = double(density) * double(volume[i]);
-    for (int a = 0; a < D; ++a)
-      add_reaction(s, a, m, double(v.v[a] - acceleration[i].v[a] * dt), double(v.v[a]), double(v_new.v[a]), double(dt));
+    const Real m = density * volume[i];
+    for (int a = 0; a < D; ++a) add_reaction(s, a, m, v.v[a] - acceleration[i].v[a] * dt, v.v[a], v_new.v[a], dt);
     return s;
   }
 };
@@ -267,12 +271,12 @@ struct ClampReactionFunctor {
   Vec<D, Real>* displacement;
   Vec<D, Real>* velocity;
 
-  MFSD_HD ConditionSums operator()(Index k) const {
-    ConditionSums s = ConditionSums::zero();
+  MFSD_HD ConditionSums<Real> operator()(Index k) const {
+    ConditionSums<Real> s = ConditionSums<Real>::zero();
     const Index i = particles[k];
     if (dt > Real(0)) {
-      const double m = double(density) * double(volume[i]);
-      for (int a = 0; a < D; ++a) s.force[a] = -m * double(velocity[i].v[a]) / double(dt);
+      const Real m = density * volume[i];
+      for (int a = 0; a < D; ++a) s.force[a] = -m * velocity[i].v[a] / dt;
     }
     displacement[i] = Vec<D, Real>::zero();
     velocity[i] = Vec<D, Real>::zero();

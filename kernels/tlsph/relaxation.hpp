@@ -56,15 +56,15 @@ MFSD_HD inline void relax_pair(Vec<D, Real>& vi, Vec<D, Real>& vj, Real mi, Real
 // pushing what the relaxation stops (next to held particles) it is less.
 template <int D, class Real>
 struct RelaxationWorkFunctor {
-  const Vec<D, Real>* before;  // v after the forces and conditions
+  const Vec<D, Real>* before;    // v after the forces and conditions
   const Vec<D, Real>* velocity;  // v* after the sweeps
   const Vec<D, Real>* acceleration;
   const Real* volume;
   Real density;
   Real dt;
-  MFSD_HD double operator()(Index i) const {
+  MFSD_HD Real operator()(Index i) const {
     const Vec<D, Real> start = before[i] - acceleration[i] * dt;
-    return 0.5 * double(density * volume[i]) * double(dot(before[i] - velocity[i], start + velocity[i]));
+    return Real(0.5) * (density * volume[i]) * dot(before[i] - velocity[i], start + velocity[i]);
   }
 };
 
@@ -79,8 +79,8 @@ struct RelaxationSweepFunctor {
   const Index* item_particle;
   const Real* item_density;    // rho0 of the item's body
   const Real* item_viscosity;  // eta of the item's body
-  const unsigned char* held;  // per particle: velocity set by a clamp or condition (null: none)
-  Real step;                 // 2 tau / p: b = 2 eta tau / p V_i V_j |dW/dr| / r (tau = dt/2)
+  const unsigned char* held;   // per particle: velocity set by a clamp or condition (null: none)
+  Real step;                   // 2 tau / p: b = 2 eta tau / p V_i V_j |dW/dr| / r (tau = dt/2)
   bool forward;
 
   MFSD_HD void operator()(Index k) const {

@@ -8,17 +8,18 @@
 
 namespace mfsd {
 
-// Returns the power f . v_mid.
+// Returns the power f . v_mid, in Real (float runs do no double arithmetic
+// per step; docs/floating-point.md).
 template <int D, class Real>
-MFSD_HD inline double add_step_force(const Vec<D, Real>& f, Real mass, Real dt, Vec<D, Real>& velocity,
-                                     Vec<D, Real>& acceleration) {
+MFSD_HD inline Real add_step_force(const Vec<D, Real>& f, Real mass, Real dt, Vec<D, Real>& velocity,
+                                   Vec<D, Real>& acceleration) {
   const Vec<D, Real> a_f = f * (Real(1) / mass);
   const Vec<D, Real> v_old = velocity - acceleration * dt;  // v^n
   const Vec<D, Real> v_mid = v_old + (acceleration + a_f) * (Real(0.5) * dt);
   velocity += a_f * dt;
   acceleration += a_f;
-  double power = 0.0;
-  for (int a = 0; a < D; ++a) power += double(f.v[a]) * double(v_mid.v[a]);
+  Real power = Real(0);
+  for (int a = 0; a < D; ++a) power += f.v[a] * v_mid.v[a];
   return power;
 }
 
