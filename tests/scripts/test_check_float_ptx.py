@@ -2,10 +2,12 @@
 """ctest FloatKernels.PtxChecker: scripts/check_float_ptx.py on the fixtures in
 tests/fixtures/float_ptx (clean: f32 arithmetic, libdevice's trig slow path and
 an allowed set-up kernel; violation: a double floor, a double device function
-and a trig look-alike), and, where FLOAT_PTX names the PTX files of a CUDA
-build (FloatKernels.NoDoubleInStepKernels), on those.
+and a trig look-alike), and, where FLOAT_PTX names the folders where nvcc
+kept the PTX of a CUDA build's float variants (FloatKernels.NoDoubleInStepKernels),
+on every .ptx in them (one per architecture).
 
   python3 tests/scripts/test_check_float_ptx.py [-v]"""
+import glob
 import os
 import sys
 import unittest
@@ -47,9 +49,11 @@ class Checker(unittest.TestCase):
 @unittest.skipUnless(os.environ.get("FLOAT_PTX"), "FLOAT_PTX unset (no CUDA build)")
 class Build(unittest.TestCase):
     def test_no_double_in_step_kernels(self):
-        paths = os.environ["FLOAT_PTX"].split(";")
-        for p in paths:
-            self.assertTrue(os.path.isfile(p), f"{p}: missing (nvcc --keep of the float variants, CMakeLists.txt)")
+        paths = []
+        for folder in os.environ["FLOAT_PTX"].split(";"):
+            found = sorted(glob.glob(os.path.join(folder, "*.ptx")))
+            self.assertTrue(found, f"{folder}: no .ptx (nvcc --keep of the float variants, CMakeLists.txt)")
+            paths += found
         violations, scanned, _ = check_float_ptx.check(paths)
         self.assertGreater(scanned, 100)  # every kernel of the solver, not an empty file
         self.assertEqual([f"{v[1]}: {v[2][:3]}" for v in violations], [])
