@@ -171,6 +171,7 @@ void BM_DeformationRate(benchmark::State& state) {
                                        block.template f<Vec<3, Real>>(field::velocity),
                                        block.template f<Vec<3, Real>>(field::acceleration),
                                        nullptr,
+                                       nullptr,
                                        Vec<3, Real>::zero(),
                                        Vec<3, Real>::zero(),
                                        block.n};
@@ -184,7 +185,7 @@ void BM_DeformationRate(benchmark::State& state) {
                                  Real(0),
                                  stats};
   for (auto _ : state) {
-    auto s = transform_reduce<Cpu>(0, block.n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), block.n},
+    auto s = transform_reduce<Cpu>(0, block.n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), block.n},
                                    StepStatisticsCombine<Real>{});
     benchmark::DoNotOptimize(s);
   }

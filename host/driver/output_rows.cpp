@@ -61,6 +61,11 @@ std::vector<std::string> energy_columns(const Scene& scene) {
     cols.push_back("crack_surface");
     for (auto& b : scene.bodies) cols.push_back(b.name + ".crack_surface");
   }
+  // Scenes with an active stress (Holzapfel-Ogden muscle): its work on the bodies, in the balance, last.
+  if (has_active_stress(scene)) {
+    cols.push_back("active_work");
+    for (auto& b : scene.bodies) cols.push_back(b.name + ".active_work");
+  }
   return cols;
 }
 
@@ -75,6 +80,7 @@ std::vector<double> energy_row(double time, const EnergySample& e, int dimension
     sum.relaxation += b.relaxation;
     sum.gravity_work += b.gravity_work;
     sum.damping += b.damping;
+    sum.active_work += b.active_work;
   }
   sum.kinetic = e.kinetic;
   sum.strain = e.strain;
@@ -104,6 +110,10 @@ std::vector<double> energy_row(double time, const EnergySample& e, int dimension
     for (auto& b : e.bodies) total += b.crack_surface;
     row.push_back(total);
     for (auto& b : e.bodies) row.push_back(b.crack_surface);
+  }
+  if (e.with_active) {
+    row.push_back(sum.active_work);
+    for (auto& b : e.bodies) row.push_back(b.active_work);
   }
   return row;
 }

@@ -26,6 +26,12 @@ inline constexpr const char* von_mises_strain = "von_mises_strain";
 inline constexpr const char* plastic_state = "plastic_state";    // plastic bodies: C_p^{-1}, alpha, work
 inline constexpr const char* plastic_strain = "plastic_strain";  // output copy of alpha
 inline constexpr const char* damping_work = "damping_work";      // Kelvin-Voigt work per reference volume
+// Holzapfel-Ogden bodies (kernels/materials/holzapfel_ogden.hpp):
+inline constexpr const char* fibre = "fibre";                    // f0, unit, reference configuration
+inline constexpr const char* sheet = "sheet";                    // s0
+inline constexpr const char* active_tension = "active_tension";  // k V_m (seed 000 eq. 43), before the ramp
+inline constexpr const char* stiffening = "stiffening";          // current / reference longitudinal modulus
+inline constexpr const char* active_work = "active_work";        // active stress's work on the body per V0
 // Phase-field fracture (fracturing bodies; kernels/fracture/phase_field.hpp).
 inline constexpr const char* phase_field = "phase_field";              // s
 inline constexpr const char* phase_field_rate = "phase_field_rate";    // ds/dt

@@ -95,36 +95,41 @@ void fill_body(const BodySpec& body, int dim, const std::string& path, std::vect
     }
 }
 
+// Evaluates one expression of x0 y0 z0 (and body b's constants) at every
+// particle of [begin, end) into component `a` of `out`; 'skip' leaves the value.
+void evaluate_particle_expression(const Scene& scene, size_t b, const std::string& text, const std::string& epath,
+                                  long begin, long end, const std::vector<Point3>& position, int a,
+                                  std::vector<Point3>& out) {
+  std::map<std::string, double> constants;
+  for (auto& kv : body_expression_constants(scene, b)) constants[kv.first] = kv.second;
+  const expr::VariableTable vars{{"x0", "y0", "z0"}};
+  expr::Program prog;
+  try {
+    prog = expr::compile(text, vars, constants);
+  } catch (const expr::ExpressionError& e) {
+    throw SceneError(epath + ": " + e.what());
+  }
+  const auto view = prog.host_view<double>();
+  for (long i = begin; i < end; ++i) {
+    const Point3& x = position[size_t(i)];
+    double value = 0;
+    int pc = 0;
+    const expr::Status st = expr::evaluate(view, x.data(), &value, &pc);
+    if (st == expr::Status::skipped) continue;
+    if (st != expr::Status::ok)
+      throw SceneError(epath + ": " + prog.describe_error(st, pc) + " at x0 = " + point_text(x, scene.dimension));
+    out[size_t(i)][a] = value;
+  }
+}
+
 // Evaluates the components of a body's initial field (velocity or
 // displacement) at every particle of the body; 'skip' leaves the value.
 void evaluate_initial_field(const Scene& scene, size_t b, const std::array<std::string, 3>& texts,
                             const std::string& path, long begin, long end, const std::vector<Point3>& position,
                             std::vector<Point3>& out) {
-  const int dim = scene.dimension;
-  std::map<std::string, double> constants;
-  for (auto& kv : body_expression_constants(scene, b)) constants[kv.first] = kv.second;
-  const expr::VariableTable vars{{"x0", "y0", "z0"}};
   const char* axis_name[3] = {"x", "y", "z"};
-  for (int a = 0; a < dim; ++a) {
-    const std::string epath = path + "/" + axis_name[a];
-    expr::Program prog;
-    try {
-      prog = expr::compile(texts[size_t(a)], vars, constants);
-    } catch (const expr::ExpressionError& e) {
-      throw SceneError(epath + ": " + e.what());
-    }
-    const auto view = prog.host_view<double>();
-    for (long i = begin; i < end; ++i) {
-      const Point3& x = position[size_t(i)];
-      double value = 0;
-      int pc = 0;
-      const expr::Status st = expr::evaluate(view, x.data(), &value, &pc);
-      if (st == expr::Status::skipped) continue;
-      if (st != expr::Status::ok)
-        throw SceneError(epath + ": " + prog.describe_error(st, pc) + " at x0 = " + point_text(x, dim));
-      out[size_t(i)][a] = value;
-    }
-  }
+  for (int a = 0; a < scene.dimension; ++a)
+    evaluate_particle_expression(scene, b, texts[size_t(a)], path + "/" + axis_name[a], begin, end, position, a, out);
 }
 
 // A body's reference map (docs/scene-reference.md): the lattice points move
@@ -390,6 +395,68 @@ void fracture_setup(const Scene& scene, InitialParticles& P) {
   }
 }
 
+// Fibre and sheet directions and the active tension of Holzapfel-Ogden body b
+// (docs/scene-reference.md): each direction normalised; zero, non-finite or
+// (sheet) non-orthogonal directions are errors naming the particle.
+void material_directions(const Scene& scene, size_t b, const std::string& path, InitialParticles& P) {
+  const int dim = scene.dimension;
+  const HolzapfelOgdenSpec& h = scene.bodies[b].material.holzapfel_ogden;
+  const long begin = P.body_range[b].begin, end = P.body_range[b].end;
+  if (P.fibre.empty()) {
+    P.fibre.assign(P.size(), Point3{0, 0, 0});
+    P.sheet.assign(P.size(), Point3{0, 0, 0});
+    P.active_tension.assign(P.size(), 0.0);
+  }
+  auto norm = [&](const Point3& v) {
+    double s = 0;
+    for (int a = 0; a < dim; ++a) s += v[a] * v[a];
+    return std::sqrt(s);
+  };
+  auto directions = [&](const std::array<std::string, 3>& text, const Point3& fallback, const std::string& key,
+                        std::vector<Point3>& out) {
+    if (text[0].empty()) {
+      for (long i = begin; i < end; ++i) out[size_t(i)] = fallback;
+      return;
+    }
+    evaluate_initial_field(scene, b, text, path + "/" + key, begin, end, P.position, out);
+    for (long i = begin; i < end; ++i) {
+      Point3& v = out[size_t(i)];
+      const double n = norm(v);
+      if (!std::isfinite(n) || !(n > 1e-12))
+        throw SceneError(path + "/" + key,
+                         "the direction " + point_text(v, dim) + " at x0 = " + point_text(P.position[size_t(i)], dim),
+                         "a finite, non-zero direction at every particle (it is normalised)");
+      for (int a = 0; a < dim; ++a) v[a] /= n;
+    }
+  };
+  directions(h.fibre, Point3{1, 0, 0}, "fibre", P.fibre);
+  directions(h.sheet, Point3{0, 1, 0}, "sheet", P.sheet);
+  if (!h.sheet[0].empty() && !h.fibre[0].empty())
+    for (long i = begin; i < end; ++i) {
+      const Point3 &f = P.fibre[size_t(i)], &s = P.sheet[size_t(i)];
+      double c = 0;
+      for (int a = 0; a < dim; ++a) c += f[a] * s[a];
+      if (std::fabs(c) > 1e-3)
+        throw SceneError(path + "/sheet",
+                         "f0 . s0 = " + std::to_string(c) + " at x0 = " + point_text(P.position[size_t(i)], dim),
+                         "a sheet direction orthogonal to the fibre (|f0 . s0| <= 1e-3)");
+    }
+  if (h.active.enabled) {
+    std::vector<Point3> vm(P.size(), Point3{0, 0, 0});
+    evaluate_particle_expression(scene, b, h.active.potential, path + "/active_stress/potential", begin, end,
+                                 P.position, 0, vm);
+    for (long i = begin; i < end; ++i) {
+      const double t = h.active.tension_per_potential * vm[size_t(i)][0];
+      if (!std::isfinite(t))
+        throw SceneError(
+            path + "/active_stress/potential",
+            "V_m = " + std::to_string(vm[size_t(i)][0]) + " at x0 = " + point_text(P.position[size_t(i)], dim),
+            "a finite transmembrane potential at every particle");
+      P.active_tension[size_t(i)] = t;
+    }
+  }
+}
+
 InitialParticles generate_particles(const Scene& scene) {
   const int dim = scene.dimension;
   InitialParticles P;
@@ -423,6 +490,9 @@ InitialParticles generate_particles(const Scene& scene) {
     evaluate_initial_field(scene, b, body.initial_velocity, path + "/initial_velocity", P.body_range[b].begin,
                            P.body_range[b].end, P.position, P.velocity);
   }
+  for (size_t b = 0; b < scene.bodies.size(); ++b)
+    if (scene.bodies[b].material.model == MaterialModel::holzapfel_ogden)
+      material_directions(scene, b, "/bodies/" + std::to_string(b) + "/material", P);
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& body = scene.bodies[b];
     if (body.initial_displacement[0].empty()) continue;

@@ -37,6 +37,11 @@ struct InitialParticles {
   std::vector<unsigned char> surface;                // faces a particle exposes, 0 inside (surface.hpp)
   std::vector<Point3> displacement;                  // initial displacement; empty when no body sets one
   std::vector<double> phase_field_lower;             // restrict_phase_field bounds on s; empty when none
+  // Holzapfel-Ogden bodies (empty when there are none): unit fibre f0 and
+  // sheet s0 per particle (other bodies: zero), and k V_m of the active stress
+  // (seed 000 eq. 43; zero for passive bodies).
+  std::vector<Point3> fibre, sheet;
+  std::vector<double> active_tension;
 
   size_t size() const { return position.size(); }
 };

@@ -17,6 +17,18 @@ bool has_fracture_body(const Scene& scene) {
   return false;
 }
 
+bool has_holzapfel_ogden_body(const Scene& scene) {
+  for (const auto& b : scene.bodies)
+    if (b.material.model == MaterialModel::holzapfel_ogden) return true;
+  return false;
+}
+
+bool has_active_stress(const Scene& scene) {
+  for (const auto& b : scene.bodies)
+    if (b.material.model == MaterialModel::holzapfel_ogden && b.material.holzapfel_ogden.active.enabled) return true;
+  return false;
+}
+
 std::vector<CrackSpec> crack_specs(const Scene& scene) {
   std::vector<CrackSpec> out;
   const int dim = scene.dimension;
@@ -71,6 +83,8 @@ const char* to_string(MaterialModel m) {
       return "j2";
     case MaterialModel::j2_mandel:
       return "j2_mandel";
+    case MaterialModel::holzapfel_ogden:
+      return "holzapfel_ogden";
   }
   return "?";
 }

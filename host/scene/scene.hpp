@@ -12,7 +12,7 @@
 
 namespace mfsd {
 
-enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel };
+enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel, holzapfel_ogden };
 enum class HardeningLaw { linear, saturation, herschel_bulkley };
 enum class HourglassControl { none, laplacian, genog };
 enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
@@ -36,6 +36,23 @@ struct FractureSpec {
   Point3 crack_direction{0, 0, 0};  // of the crack-tip output; zero = along the first notch (2-D)
 };
 
+// Holzapfel-Ogden (seed 000 eq. 12-17; kernels/materials/holzapfel_ogden.hpp)
+// with the active stress of seed 000 eq. 18-19, 43: T_a = k V_m(x0, y0, z0),
+// grown linearly from 0 over ramp_time (0: from the start).
+struct ActiveStressSpec {
+  bool enabled = false;
+  std::string potential;             // V_m, expression of x0 y0 z0 and the constants
+  double tension_per_potential = 0;  // k (seed 000 eq. 43: -0.5)
+  double ramp_time = 0;              // s
+};
+struct HolzapfelOgdenSpec {
+  double a = 0, b = 0, af = 0, bf = 0, as = 0, bs = 0, afs = 0, bfs = 0;
+  double lambda = 0;                             // Lame parameter of the ln J terms
+  std::array<std::string, 3> fibre{"", "", ""};  // f0, expressions of x0 y0 z0; "" = not given
+  std::array<std::string, 3> sheet{"", "", ""};  // s0
+  ActiveStressSpec active;
+};
+
 struct MaterialSpec {
   MaterialModel model = MaterialModel::neo_hookean;
   double density = 0;
@@ -56,6 +73,7 @@ struct MaterialSpec {
   // j2_mandel (seed 001 eq. 32-52): the same elasticity and linear hardening,
   // seed 001's return on C_p with the Mandel stress (j2_return_mapping.hpp).
   FractureSpec fracture;
+  HolzapfelOgdenSpec holzapfel_ogden;  // model holzapfel_ogden (density, and E and nu derived from a and K)
   bool plastic() const { return model == MaterialModel::j2 || model == MaterialModel::j2_mandel; }
 };
 
@@ -225,6 +243,10 @@ struct Scene {
 bool has_plastic_body(const Scene& scene);
 // Whether some body's material has fracture.
 bool has_fracture_body(const Scene& scene);
+// Some body is Holzapfel-Ogden (the solver then keeps fibre and sheet fields).
+bool has_holzapfel_ogden_body(const Scene& scene);
+// Some Holzapfel-Ogden body has an active stress (energies.csv gets active_work columns).
+bool has_active_stress(const Scene& scene);
 
 // The crack followed by the crack-tip output (crack_<body>.csv) of a
 // fracturing body: from `origin` (the first notch's tip in 2-D, the centre of

@@ -54,14 +54,89 @@ void line_column(const std::string& text, size_t byte, size_t& line, size_t& col
   }
 }
 
+// A direction given per body (numbers) or per particle (expressions of x0 y0 z0).
+std::array<std::string, 3> read_direction(JsonNode& m, const std::string& key, int dim) {
+  std::array<std::string, 3> out{"", "", ""};
+  auto node = m.optional_object(key);
+  if (!node) return out;
+  const char* axes[3] = {"x", "y", "z"};
+  for (int a = 0; a < dim; ++a) out[size_t(a)] = node->expression(axes[a], "0");
+  node->finish();
+  return out;
+}
+
+// Holzapfel-Ogden (seed 000 eq. 12-19): a, b > 0; the anisotropic a_i, b_i >= 0
+// (seed 000 Table 3 sets b_f = 0, and a_f = a_s = a_fs = 0 for the isotropic
+// body); lambda from bulk_modulus (K = lambda + 2a/3) or poisson_ratio
+// (lambda = 2 a nu / (1 - 2 nu), a the shear modulus, as seed 000 section 5.2).
+void read_holzapfel_ogden(JsonNode& m, MaterialSpec& spec, int dim) {
+  HolzapfelOgdenSpec& h = spec.holzapfel_ogden;
+  h.a = m.number("a", Range::positive());
+  h.b = m.number("b", Range::positive());
+  h.af = m.number("a_f", 0.0, Range::non_negative());
+  h.bf = m.number("b_f", 0.0, Range::non_negative());
+  h.as = m.number("a_s", 0.0, Range::non_negative());
+  h.bs = m.number("b_s", 0.0, Range::non_negative());
+  h.afs = m.number("a_fs", 0.0, Range::non_negative());
+  h.bfs = m.number("b_fs", 0.0, Range::non_negative());
+  if (m.has("bulk_modulus") == m.has("poisson_ratio"))
+    throw SceneError(
+        m.path(),
+        m.has("bulk_modulus") ? "both bulk_modulus and poisson_ratio" : "neither bulk_modulus nor poisson_ratio",
+        "one of them: bulk_modulus K (lambda = K - 2a/3) or poisson_ratio nu (lambda = 2 a nu / (1 - 2 nu))");
+  if (m.has("bulk_modulus")) {
+    const double K = m.number("bulk_modulus", Range::positive());
+    h.lambda = K - 2.0 * h.a / 3.0;
+    if (!(h.lambda > 0))
+      throw SceneError(m.key_path("bulk_modulus"), std::to_string(K),
+                       "a bulk modulus > 2a/3 = " + std::to_string(2.0 * h.a / 3.0) + " (lambda = K - 2a/3 > 0)");
+  } else {
+    const double nu = m.number("poisson_ratio", Range{0.0, 0.5, true, true, "a number in (0, 0.5)"});
+    h.lambda = 2.0 * h.a * nu / (1.0 - 2.0 * nu);
+  }
+  // E and nu of the small-strain shear modulus a and bulk modulus lambda + 2a/3
+  // (expression constants E nu K G, reports).
+  const double G = h.a, K = h.lambda + 2.0 * G / 3.0;
+  spec.poisson_ratio = (3 * K - 2 * G) / (2 * (3 * K + G));
+  spec.youngs_modulus = 2 * G * (1 + spec.poisson_ratio);
+  h.fibre = read_direction(m, "fibre", dim);
+  h.sheet = read_direction(m, "sheet", dim);
+  if (auto act = m.optional_object("active_stress")) {
+    h.active.enabled = true;
+    h.active.potential = act->expression("potential", "");
+    if (h.active.potential.empty())
+      throw SceneError(act->key_path("potential"), "nothing",
+                       "the transmembrane potential V_m, an expression of x0 y0 z0");
+    h.active.tension_per_potential = act->number("tension_per_potential", Range::any());
+    h.active.ramp_time = act->number("ramp_time", 0.0, Range::non_negative());
+    act->finish();
+  }
+  const bool needs_fibre = h.af > 0 || h.afs > 0 || h.active.enabled, needs_sheet = h.as > 0 || h.afs > 0;
+  if (needs_fibre && h.fibre[0].empty())
+    throw SceneError(m.key_path("fibre"), "nothing",
+                     "the fibre direction f0 {\"x\": .., \"y\": ..}: numbers, or expressions of x0 y0 z0 "
+                     "(a_f, a_fs or active_stress act along it)");
+  if (needs_sheet && h.sheet[0].empty())
+    throw SceneError(
+        m.key_path("sheet"), "nothing",
+        "the sheet direction s0 {\"x\": .., \"y\": ..}, orthogonal to the fibre (a_s or a_fs act along it)");
+}
+
 MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std::string>& warnings) {
   MaterialSpec spec;
-  const std::string model = m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel"});
-  spec.model = model == "neo_hookean" ? MaterialModel::neo_hookean
-               : model == "j2"        ? MaterialModel::j2
-               : model == "j2_mandel" ? MaterialModel::j2_mandel
-                                      : MaterialModel::saint_venant_kirchhoff;
+  const std::string model =
+      m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel", "holzapfel_ogden"});
+  spec.model = model == "neo_hookean"       ? MaterialModel::neo_hookean
+               : model == "j2"              ? MaterialModel::j2
+               : model == "j2_mandel"       ? MaterialModel::j2_mandel
+               : model == "holzapfel_ogden" ? MaterialModel::holzapfel_ogden
+                                            : MaterialModel::saint_venant_kirchhoff;
   spec.density = m.number("density", Range::positive());
+  if (spec.model == MaterialModel::holzapfel_ogden) {
+    read_holzapfel_ogden(m, spec, dim);
+    m.finish();  // no fracture or plasticity with this model
+    return spec;
+  }
   spec.youngs_modulus = m.number("youngs_modulus", Range::positive());
   spec.poisson_ratio = m.number("poisson_ratio", Range{-1.0, 0.5, true, true, "a number in (-1, 0.5)"});
   if (auto f = m.optional_object("fracture")) spec.fracture = read_fracture(*f, spec, spacing, dim, warnings);
@@ -429,6 +504,11 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
           std::string("\"") + to_string(scene.solver.hourglass) + "\" with fracture in body \"" + body.name + "\"",
           "\"none\": the degraded stress of phase-field fracture is implemented in the standard "
           "TLSPH form (seed 001), not in the hourglass-controlled splits");
+    if (body.material.model == MaterialModel::holzapfel_ogden && scene.solver.hourglass == HourglassControl::laplacian)
+      throw SceneError("/solver/hourglass",
+                       std::string("\"laplacian\" with the holzapfel_ogden body \"") + body.name + "\"",
+                       "\"genog\" or \"none\": the Laplacian form of seed 003 is defined for isotropic elastic "
+                       "bodies; GENOG's shear term takes the Holzapfel-Ogden c = a exp[b(I1 - 3)] (seed 000)");
     if (body.material.plastic() && scene.solver.hourglass == HourglassControl::laplacian)
       throw SceneError(node.key_path("material") + "/model",
                        std::string("\"") + to_string(body.material.model) + "\" with solver.hourglass \"laplacian\"",

@@ -52,11 +52,13 @@ struct BodyEnergy {
   double damping = 0;        // work taken by the Kelvin-Voigt damping (solver.damping)
   double relaxation = 0;     // kinetic energy removed by solver.relaxation
   double crack_surface = 0;  // Gc int (1-s)^2/(4 eps0) + eps0 |grad s|^2 dV0 (fracturing bodies)
+  double active_work = 0;    // work of the active stress on the body (Holzapfel-Ogden muscle)
   Point3 momentum{0, 0, 0};  // kg m/s (2-D: per metre of depth)
-  // Constant in time for a conservative run: E_k + E_s + dissipation - W_ext - W_bc - W_contact - W_gravity.
+  // Constant in time for a conservative run:
+  // E_k + E_s + dissipation - W_ext - W_bc - W_contact - W_gravity - W_active.
   double balance() const {
     return kinetic + strain + plastic + fracture + damping + relaxation - external_work - boundary_work - contact_work -
-           gravity_work;
+           gravity_work - active_work;
   }
 };
 
@@ -65,6 +67,7 @@ struct EnergySample {
   Point3 momentum{0, 0, 0};
   double hourglass_max = 0, hourglass_mean = 0;
   bool with_fracture = false;  // some body fractures: crack_surface columns are written
+  bool with_active = false;    // some body has an active stress: active_work columns are written
   std::vector<BodyEnergy> bodies;
 };
 

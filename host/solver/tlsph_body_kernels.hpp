@@ -4,6 +4,7 @@
 // holds one BodyKernels per body behind a host-side virtual interface; the
 // kernels themselves contain no run-time switches on the model.
 #pragma once
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
@@ -11,6 +12,7 @@
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/solver/tlsph_views.hpp"
+#include "kernels/materials/holzapfel_ogden.hpp"
 #include "kernels/materials/j2_plastic.hpp"
 #include "kernels/materials/neo_hookean.hpp"
 #include "kernels/materials/saint_venant_kirchhoff.hpp"
@@ -32,6 +34,9 @@ class BodyKernels {
   virtual EnergySums energy(const TlsphViews<D, Real>& v) const = 0;
   // Phase-field fracture (tlsph_fracture_kernels.hpp); nothing for other bodies:
   // ds/dt to t + dt, then s to t + dt.
+  // Before the stress stage of a step whose stress is taken at time t
+  // (t + dt/2; 0 at set-up): the active stress's ramp.
+  virtual void prepare_step(double /*t*/) {}
   virtual void phase_field_rate(const TlsphViews<D, Real>&, Real /*dt*/) const {}
   virtual void phase_field_half_step(const TlsphViews<D, Real>&, Real /*half_dt*/) const {}
 };
@@ -45,14 +50,22 @@ struct BodyKernelSettings {
   GenogLimiter genog_limiter;
   GenogForm genog_form;
   double genog_alpha;
-  double damping_normal;  // factor rho0 h c0 / 2
-  double damping_shear;   // factor rho0 h c / 2 on off-diagonal components
+  double damping_normal;         // factor rho0 h c0 / 2
+  double damping_shear;          // factor rho0 h c / 2 on off-diagonal components
+  double active_ramp_time = -1;  // Holzapfel-Ogden active stress: T_a grows over this time; < 0: none
 };
 
 template <class B, int D, class Real, class Material, class Hourglass>
 class BodyKernelsImpl : public BodyKernels<B, D, Real> {
  public:
   BodyKernelsImpl(const Material& m, const BodyKernelSettings& s) : material_(m), s_(s) {}
+
+  void prepare_step(double t) override {
+    if constexpr (IsHolzapfelOgden<Material>::value) {
+      if (s_.active_ramp_time >= 0)  // T_a = k V_m min(t / ramp_time, 1)
+        material_.activation = Real(s_.active_ramp_time > 0 ? std::min(t / s_.active_ramp_time, 1.0) : 1.0);
+    }
+  }
 
   void stress(const TlsphViews<D, Real>& v, Real half_dt) const override {
     StressFunctor<D, Real, Material, Hourglass> f{material_,
@@ -71,7 +84,9 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
                                                   v.inverse_F,
                                                   v.neighbor_record,
                                                   v.plastic_state,
-                                                  v.damping_work};
+                                                  v.damping_work,
+                                                  v.stiffening,
+                                                  v.active_work};
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
@@ -112,7 +127,7 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(s_.gravity[a]);
     return {material_, v.deformation_gradient, v.plastic_state,  v.velocity, v.displacement,
-            v.volume,  v.damping_work,         Real(s_.density), g};
+            v.volume,  v.damping_work,         Real(s_.density), g,          v.active_work};
   }
 
   Material material_;

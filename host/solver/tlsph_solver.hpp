@@ -308,6 +308,7 @@ class TlsphSolver final : public Solver {
 
     // Initial rates and forces, so that the first time step sees them.
     parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
+    for (auto& k : bodies_) k->prepare_step(0.0);
     for (auto& k : bodies_) k->stress(v_, Real(0));
     for (auto& k : bodies_) k->acceleration(v_, Real(0));
     update_time_step(statistics());
@@ -340,6 +341,7 @@ class TlsphSolver final : public Solver {
     const Real half_dt = Real(0.5 * dt);
     results_.clear();
     run("stress", [&] {
+      for (auto& k : bodies_) k->prepare_step(time_ + 0.5 * dt);
       for (auto& k : bodies_) k->stress(v_, half_dt);
     });
     run("force", [&] {
@@ -359,7 +361,7 @@ class TlsphSolver final : public Solver {
       RateHalfStepFunctor<D, Real> f{
           v_.pairs,        v_.velocity, v_.correction,       v_.deformation_rate, v_.deformation_gradient,
           v_.displacement, half_dt,     statistics_functor()};
-      stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), n},
+      stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
                                    StepStatisticsCombine<Real>{});
     });
     // The step's one synchronisation: every sum of the step comes to the host.
@@ -444,6 +446,7 @@ class TlsphSolver final : public Solver {
   EnergySample energies() override {
     EnergySample e;
     e.with_fracture = has_fracture_;
+    e.with_active = has_active_stress(scene_);
     for (size_t b = 0; b < bodies_.size(); ++b) {
       const EnergySums s = bodies_[b]->energy(v_);
       e.kinetic += s.kinetic;
@@ -461,6 +464,7 @@ class TlsphSolver final : public Solver {
       be.damping = s.damping;
       be.fracture = s.fracture;
       be.crack_surface = s.surface;
+      be.active_work = s.active;
       for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
     }
@@ -606,6 +610,20 @@ class TlsphSolver final : public Solver {
     }
     particles_.template add<Real>(field::volume);
     from_host<B>(volume, particles_.template buffer<Real>(field::volume));
+    if (!init_.fibre.empty()) {  // Holzapfel-Ogden bodies: f0, s0, k V_m; stiffening written by the stress stage
+      std::vector<Vec<D, Real>> f(n), s(n);
+      for (size_t i = 0; i < n; ++i)
+        for (int a = 0; a < D; ++a) f[i].v[a] = Real(init_.fibre[i][a]), s[i].v[a] = Real(init_.sheet[i][a]);
+      particles_.template add<Vec<D, Real>>(field::fibre);
+      from_host<B>(f, particles_.template buffer<Vec<D, Real>>(field::fibre));
+      particles_.template add<Vec<D, Real>>(field::sheet);
+      from_host<B>(s, particles_.template buffer<Vec<D, Real>>(field::sheet));
+      particles_.template add<Real>(field::active_tension);
+      from_host<B>(std::vector<Real>(init_.active_tension.begin(), init_.active_tension.end()),
+                   particles_.template buffer<Real>(field::active_tension));
+      particles_.template add<Real>(field::stiffening);
+      if (has_active_stress(scene_)) particles_.template add<Real>(field::active_work);  // zero
+    }
     if (has_fracture_) {  // s = 1 (intact), the rest zero; every particle (bodies are ranges of one set)
       particles_.template add<Real>(field::phase_field);
       from_host<B>(std::vector<Real>(n, Real(1)), particles_.template buffer<Real>(field::phase_field));
@@ -651,6 +669,11 @@ class TlsphSolver final : public Solver {
         particles_.has(field::plastic_state) ? particles_.template get<J2State<Real>>(field::plastic_state) : nullptr;
     v_.plastic_strain = opt_real(field::plastic_strain);
     v_.damping_work = opt_real(field::damping_work);
+    v_.fibre = particles_.has(field::fibre) ? particles_.template get<Vec<D, Real>>(field::fibre) : nullptr;
+    v_.sheet = particles_.has(field::sheet) ? particles_.template get<Vec<D, Real>>(field::sheet) : nullptr;
+    v_.active_tension = opt_real(field::active_tension);
+    v_.stiffening = opt_real(field::stiffening);
+    v_.active_work = opt_real(field::active_work);
     v_.phase = PhaseFieldViews<Real>{opt_real(field::phase_field),       opt_real(field::phase_field_rate),
                                      opt_real(field::fracture_history),  opt_real(field::tensile_energy),
                                      opt_real(field::fracture_released), opt_real(field::phase_field_lower),
@@ -698,6 +721,16 @@ class TlsphSolver final : public Solver {
               Real(p.K), Real(p.G), {Real(m.yield_stress), Real(m.hardening_modulus)}},
           k);
     }
+    if (m.model == MaterialModel::holzapfel_ogden) {
+      const HolzapfelOgdenSpec& h = m.holzapfel_ogden;
+      const HolzapfelOgdenParameters<Real> hp{Real(h.lambda), Real(h.a),  Real(h.b),   Real(h.af), Real(h.bf),
+                                              Real(h.as),     Real(h.bs), Real(h.afs), Real(h.bfs)};
+      const double reference = h.lambda + 2.0 * h.a * h.b + 2.0 * h.a + 4.0 * std::max(h.af, h.as);
+      k.active_ramp_time = h.active.enabled ? h.active.ramp_time : -1.0;
+      return make_variant(HolzapfelOgden<D, Real>{hp, Real(reference), v_.fibre, v_.sheet,
+                                                  h.active.enabled ? v_.active_tension : nullptr, Real(1)},
+                          k);
+    }
     if (m.fracture.enabled) {  // hourglass "none" (scene_reader refuses the others)
       const double speed = m.fracture.speed > 0 ? m.fracture.speed : std::sqrt((p.K + 4.0 * p.G / 3.0) / m.density);
       const FractureParameters<Real> f{Real(m.fracture.energy_release_rate), Real(m.fracture.length_scale), Real(speed),
@@ -718,8 +751,8 @@ class TlsphSolver final : public Solver {
       case HourglassControl::none:
         return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassNone>>(m, k);
       case HourglassControl::laplacian:
-        if constexpr (IsPlastic<Material>::value)
-          throw std::logic_error("the Laplacian hourglass form is defined for elastic bodies only");  // scene_reader
+        if constexpr (IsPlastic<Material>::value || IsHolzapfelOgden<Material>::value)
+          throw std::logic_error("the Laplacian hourglass form is defined for isotropic elastic bodies only");
         else
           return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassLaplacian>>(m, k);
       case HourglassControl::genog:
@@ -735,6 +768,7 @@ class TlsphSolver final : public Solver {
                                      v_.velocity,
                                      v_.acceleration,
                                      scene_.solver.deformed_time_step ? v_.deformation_gradient : nullptr,
+                                     v_.stiffening,
                                      {},
                                      {},
                                      n};
@@ -747,7 +781,7 @@ class TlsphSolver final : public Solver {
 
   StepStatistics<Real> statistics() {
     const Index n = particles_.size();
-    return transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), Real(0), n},
+    return transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
                                StepStatisticsCombine<Real>{});
   }
 
@@ -758,9 +792,12 @@ class TlsphSolver final : public Solver {
     const double vmax = std::sqrt(double(s.max_speed2));
     const double amax = std::sqrt(double(s.max_acceleration2));
     const double stretch = std::max(1.0, double(s.max_inverse_stretch));
+    // Holzapfel-Ogden: c0 from the stiffest particle's current modulus
+    // (HolzapfelOgdenPoint::longitudinal_modulus), never below the reference.
+    const double stiffening = std::sqrt(std::max(1.0, double(s.max_stiffening)));
     double dt = std::numeric_limits<double>::infinity();
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
-      dt = std::min(dt, props(b).h / (wave_speed(b) * stretch + vmax));
+      dt = std::min(dt, props(b).h / (wave_speed(b) * stretch * stiffening + vmax));
       if (amax > 0) dt = std::min(dt, std::sqrt(props(b).h / amax));
     }
     // Contact springs and dashpots (kernels/contact/contact_force.hpp).

@@ -30,8 +30,14 @@ struct TlsphViews {
   Real* von_mises;
   Real* jacobian;
   Real* von_mises_strain;
-  Real* plastic_strain;         // when some body is plastic, else null
-  Real* damping_work;           // with Kelvin-Voigt damping (factor > 0), else null
+  Real* plastic_strain;  // when some body is plastic, else null
+  Real* damping_work;    // with Kelvin-Voigt damping (factor > 0), else null
+  // When some body is Holzapfel-Ogden, else null:
+  const Vec<D, Real>* fibre;    // f0
+  const Vec<D, Real>* sheet;    // s0
+  const Real* active_tension;   // k V_m
+  Real* stiffening;             // current / reference longitudinal modulus, for the time step
+  Real* active_work;            // work of the active stress on the body per V0 (when some body has one)
   PhaseFieldViews<Real> phase;  // when some body has fracture, else all null
 };
 

@@ -1,6 +1,7 @@
 // Output quantities: von Mises stress, J, energies.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/holzapfel_ogden.hpp"
 #include "kernels/materials/j2_plastic.hpp"
 
 namespace mfsd {
@@ -37,6 +38,8 @@ MFSD_HD inline Mat<D, Real> kirchhoff_of(const Material& m, const Mat<D, Real>& 
                                          Index i) {
   if constexpr (IsPlastic<Material>::value)
     return m.kirchhoff(F, state[i]);
+  else if constexpr (IsHolzapfelOgden<Material>::value)
+    return m.at(i).kirchhoff(F);
   else
     return m.kirchhoff(F);
 }
@@ -45,6 +48,8 @@ template <int D, class Real, class Material>
 MFSD_HD inline Real strain_energy_of(const Material& m, const Mat<D, Real>& F, const J2State<Real>* state, Index i) {
   if constexpr (IsPlastic<Material>::value)
     return m.strain_energy_density(F, state[i]);
+  else if constexpr (IsHolzapfelOgden<Material>::value)
+    return m.at(i).strain_energy_density(F);
   else
     return m.strain_energy_density(F);
 }
@@ -84,6 +89,7 @@ struct EnergySums {
   double damping;         // work taken by the Kelvin-Voigt damping
   double fracture = 0.0;  // elastic energy released by phase-field degradation (fracture_stress.hpp)
   double surface = 0.0;   // crack surface energy Gc int (1-s)^2/(4 eps0) + eps0 |grad s|^2
+  double active = 0.0;    // work done on the body by its active stress (Holzapfel-Ogden muscle)
 };
 
 struct EnergySumsPlus {
@@ -95,7 +101,8 @@ struct EnergySumsPlus {
                       a.gravity + b.gravity,
                       a.damping + b.damping,
                       a.fracture + b.fracture,
-                      a.surface + b.surface};
+                      a.surface + b.surface,
+                      a.active + b.active};
   }
 };
 
@@ -113,6 +120,7 @@ struct EnergyFunctor {
   const Real* damping_work;  // null without damping
   Real density;
   Vec<D, Real> gravity;
+  const Real* active_work = nullptr;  // per V0, Holzapfel-Ogden bodies with active stress, else null
 
   MFSD_HD EnergySums operator()(Index i) const {
     const double V0 = double(volume[i]);
@@ -127,7 +135,8 @@ struct EnergyFunctor {
                  0.0,
                  damping_work ? V0 * double(damping_work[i]) : 0.0,
                  0.0,
-                 0.0};
+                 0.0,
+                 active_work ? V0 * double(active_work[i]) : 0.0};
     for (int a = 0; a < D; ++a) {
       s.momentum[a] = m * double(v.v[a]);
       s.gravity += m * double(gravity.v[a]) * double(displacement[i].v[a]);

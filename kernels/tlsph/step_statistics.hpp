@@ -13,15 +13,17 @@ struct StepStatistics {
   Real max_speed2;
   Real max_acceleration2;
   Real max_inverse_stretch;  // max |F^{-1}|_2, 0 unless requested
+  Real max_stiffening;       // max current / reference modulus (Holzapfel-Ogden), 0 without
   Index first_bad;           // smallest index of a non-finite or escaped particle, or n
 };
 
 template <class Real>
 struct StepStatisticsCombine {
   MFSD_HD StepStatistics<Real> operator()(const StepStatistics<Real>& a, const StepStatistics<Real>& b) const {
-    return StepStatistics<Real>{
-        math::max(a.max_speed2, b.max_speed2), math::max(a.max_acceleration2, b.max_acceleration2),
-        math::max(a.max_inverse_stretch, b.max_inverse_stretch), math::min(a.first_bad, b.first_bad)};
+    return StepStatistics<Real>{math::max(a.max_speed2, b.max_speed2),
+                                math::max(a.max_acceleration2, b.max_acceleration2),
+                                math::max(a.max_inverse_stretch, b.max_inverse_stretch),
+                                math::max(a.max_stiffening, b.max_stiffening), math::min(a.first_bad, b.first_bad)};
   }
 };
 
@@ -32,6 +34,7 @@ struct StepStatisticsFunctor {
   const Vec<D, Real>* velocity;
   const Vec<D, Real>* acceleration;
   const Mat<D, Real>* deformation_gradient;  // null: no inverse stretch
+  const Real* stiffening;                    // null: no Holzapfel-Ogden body
   Vec<D, Real> lower, upper;                 // scene bounds
   Index n;
 
@@ -46,7 +49,8 @@ struct StepStatisticsFunctor {
       s = inverse_stretch(deformation_gradient[i]);
       ok = ok && math::isfinite(s);
     }
-    return StepStatistics<Real>{ok ? v2 : Real(0), ok ? a2 : Real(0), ok ? s : Real(0), ok ? n : i};
+    const Real k = stiffening ? stiffening[i] : Real(0);
+    return StepStatistics<Real>{ok ? v2 : Real(0), ok ? a2 : Real(0), ok ? s : Real(0), ok ? k : Real(0), ok ? n : i};
   }
 };
 

@@ -25,6 +25,7 @@
 #include <type_traits>
 
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/holzapfel_ogden.hpp"
 #include "kernels/materials/j2_plastic.hpp"
 #include "kernels/tlsph/damping.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
@@ -51,10 +52,15 @@ struct StressFunctor {
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU, else null
   J2State<Real>* plastic_state;                // plastic materials, else null
   Real* damping_work;                          // with Kelvin-Voigt damping: its work per V0, else null
+  Real* stiffening = nullptr;                  // Holzapfel-Ogden: current / reference longitudinal modulus
+  Real* active_work = nullptr;                 // Holzapfel-Ogden with active stress: its work on the body per V0
 
   static constexpr bool plastic = IsPlastic<Material>::value;
+  static constexpr bool anisotropic = IsHolzapfelOgden<Material>::value;
   static_assert(!(plastic && std::is_same<Hourglass, HourglassLaplacian>::value),
                 "the Laplacian hourglass form is defined for elastic bodies only (seed 003)");
+  static_assert(!(anisotropic && std::is_same<Hourglass, HourglassLaplacian>::value),
+                "the Laplacian hourglass form is defined for isotropic elastic bodies only (seed 003)");
 
   MFSD_HD void operator()(Index i) const {
     const Mat<D, Real> dF = rate[i];
@@ -79,6 +85,24 @@ struct StressFunctor {
       } else {
         tau.add_diagonal(p.volumetric - material.G * trace(p.be_bar) / Real(3));  // tau_r
         S = mul_transposed(be * material.G, F_inv);                               // G b_bar_e F^{-T}
+        if (correction_in_force) S = S * correction[i];
+        shear_stress[i] = S;
+        if (!neighbor_record) inverse_F[i] = F_inv;
+      }
+    } else if constexpr (anisotropic) {
+      const auto m = material.at(i);  // f0, s0 and T_a of particle i (seed 000 eq. 17-19)
+      if (stiffening) stiffening[i] = m.longitudinal_modulus(F) / material.reference_modulus;
+      // Work of the active stress on the body over the step, -V0 tau_a : (dF/dt F^{-1}) dt with
+      // tau_a = T_a f (x) f, f = F f0 (seed 000 eq. 19): tau_a : L = T_a f . L f.
+      if (active_work) {
+        const Vec<D, Real> f = F * m.f0;
+        active_work[i] -= Real(2) * half_dt * m.active_tension * dot(f, (dF * F_inv) * f);
+      }
+      if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
+        tau = m.kirchhoff(F) + tau_d;
+      } else {  // genog: tau_s = c b, c = a exp[b(I1 - 3)]; tau_r = tau - c b (seed 000 eq. 25)
+        tau = m.kirchhoff_remainder(F) + tau_d;
+        S = F * m.shear_coefficient(F);  // c b F^{-T} = c F
         if (correction_in_force) S = S * correction[i];
         shear_stress[i] = S;
         if (!neighbor_record) inverse_F[i] = F_inv;

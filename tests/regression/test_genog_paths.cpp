@@ -21,6 +21,9 @@ namespace {
 // Each scene at a small resolution (the shipped ones are up to 2 M particles).
 const std::vector<std::pair<std::string, std::vector<std::string>>> kScenes = {
     {"bending_column_3d.json", {"constants.H_over_dp=4"}},
+    {"bending_column_ho_3d.json", {"constants.H_over_dp=4", "constants.k=0.5"}},
+    {"muscle_contraction_3d.json", {"constants.dp=0.2"}},
+    {"twisting_column_ho_3d.json", {"constants.H_over_dp=4"}},
     {"cantilever_large_deformation_3d.json", {"constants.dp=0.0025"}},
     {"cantilever_plate_3d.json", {"constants.dp=0.004"}},
     {"taylor_bar_3d_round.json", {"constants.R_over_dp=4"}},
