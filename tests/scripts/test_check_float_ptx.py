@@ -9,13 +9,13 @@ on every .ptx in them (one per architecture).
   python3 tests/scripts/test_check_float_ptx.py [-v]"""
 import glob
 import os
-import sys
 import unittest
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-FIXTURE = os.path.join(ROOT, "tests", "fixtures", "float_ptx")
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from script_test_prelude import ROOT, fixture
+
 import check_float_ptx  # noqa: E402
+
+FIXTURE = fixture("float_ptx")
 
 
 class Checker(unittest.TestCase):

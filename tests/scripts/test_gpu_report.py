@@ -11,14 +11,14 @@ import json
 import os
 import shutil
 import subprocess
-import sys
 import tempfile
 import unittest
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-FIXTURE = os.path.join(ROOT, "tests", "fixtures", "gpu_report")
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from script_test_prelude import ROOT, fixture
+
 import gpu_report  # noqa: E402
+
+FIXTURE = fixture("gpu_report")
 
 
 class Report(unittest.TestCase):
