@@ -27,4 +27,10 @@ expr::Program compile_particle_expression(const std::string& text, const Scene& 
   }
 }
 
+bool reads_only_reference_position(const expr::Program& program) {
+  for (const expr::Instr& in : program.code())
+    if (in.op == expr::Op::load_var && in.arg > var_z0) return false;
+  return true;
+}
+
 }  // namespace mfsd

@@ -17,4 +17,8 @@ const expr::VariableTable& particle_variable_table();
 expr::Program compile_particle_expression(const std::string& text, const Scene& scene, size_t body,
                                           const std::string& path);
 
+// True when a program compiled by compile_particle_expression reads no
+// variable but x0 y0 z0 (it can be evaluated once, at set-up).
+bool reads_only_reference_position(const expr::Program& program);
+
 }  // namespace mfsd

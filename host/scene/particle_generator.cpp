@@ -441,16 +441,18 @@ void material_directions(const Scene& scene, size_t b, const std::string& path, 
                          "f0 . s0 = " + std::to_string(c) + " at x0 = " + point_text(P.position[size_t(i)], dim),
                          "a sheet direction orthogonal to the fibre (|f0 . s0| <= 1e-3)");
     }
-  if (h.active.enabled) {
+  // A potential that reads t (or the motion) is evaluated each step on the
+  // device (host/solver/tlsph_conditions.hpp); this one at set-up.
+  const std::string vpath = path + "/active_stress/potential";
+  if (h.active.enabled &&
+      reads_only_reference_position(compile_particle_expression(h.active.potential, scene, b, vpath))) {
     std::vector<Point3> vm(P.size(), Point3{0, 0, 0});
-    evaluate_particle_expression(scene, b, h.active.potential, path + "/active_stress/potential", begin, end,
-                                 P.position, 0, vm);
+    evaluate_particle_expression(scene, b, h.active.potential, vpath, begin, end, P.position, 0, vm);
     for (long i = begin; i < end; ++i) {
       const double t = h.active.tension_per_potential * vm[size_t(i)][0];
       if (!std::isfinite(t))
         throw SceneError(
-            path + "/active_stress/potential",
-            "V_m = " + std::to_string(vm[size_t(i)][0]) + " at x0 = " + point_text(P.position[size_t(i)], dim),
+            vpath, "V_m = " + std::to_string(vm[size_t(i)][0]) + " at x0 = " + point_text(P.position[size_t(i)], dim),
             "a finite transmembrane potential at every particle");
       P.active_tension[size_t(i)] = t;
     }

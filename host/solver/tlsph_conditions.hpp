@@ -62,25 +62,23 @@ class TlsphConditions {
         if (spec.value[size_t(a)].empty()) continue;
         const std::string path = condition_path(c) + "/" + axis[a];
         cond->program[a] = compile_particle_expression(spec.value[size_t(a)], scene, cond->body, path);
-        const expr::Program& p = cond->program[a];
-        if (p.is_constant()) {
-          cv.kind = ComponentValue<Real>::constant;
-          cv.value = Real(p.constant_value());
-          continue;
-        }
-        expr::ProgramView<Real> view;
-        try {
-          view = p.template host_view<Real>();  // checks the float range
-        } catch (const expr::ExpressionError& e) {
-          throw SceneError(path + ": " + e.what());
-        }
-        from_host<B>(p.code(), cond->code[a]);
-        from_host<B>(std::vector<Real>(view.consts, view.consts + view.n_consts), cond->consts[a]);
-        cv.kind = ComponentValue<Real>::program;
-        cv.code =
-            expr::ProgramView<Real>{raw(cond->code[a]), int(p.code().size()), raw(cond->consts[a]), view.n_consts};
+        cv = compile_component(cond->program[a], path, cond->code[a], cond->consts[a]);
       }
       conditions_.push_back(std::move(cond));
+    }
+    for (size_t b = 0; b < scene.bodies.size(); ++b) {
+      const MaterialSpec& mat = scene.bodies[b].material;
+      if (mat.model != MaterialModel::holzapfel_ogden || !mat.holzapfel_ogden.active.enabled) continue;
+      const std::string path = "/bodies/" + std::to_string(b) + "/material/active_stress/potential";
+      expr::Program p = compile_particle_expression(mat.holzapfel_ogden.active.potential, scene, b, path);
+      if (reads_only_reference_position(p)) continue;  // evaluated at set-up (particle_generator.cpp)
+      auto a = std::make_unique<ActivePotential>();
+      a->body = b;
+      a->path = path;
+      a->k = mat.holzapfel_ogden.active.tension_per_potential;
+      a->component = compile_component(p, path, a->code, a->consts);
+      a->program = std::move(p);
+      potentials_.push_back(std::move(a));
     }
   }
 
@@ -101,7 +99,29 @@ class TlsphConditions {
     }
   }
 
-  bool empty() const { return clamps_.empty() && conditions_.empty(); }
+  bool empty() const { return clamps_.empty() && conditions_.empty() && potentials_.empty(); }
+
+  // Time-dependent active potentials at time t (the stress stage's time,
+  // before it): active_tension = k V_m(t) on their bodies. A run-time
+  // expression error is reported by collect().
+  void apply_fields(const TlsphViews<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
+    for (auto& a : potentials_) {
+      const ComponentValue<Real> none{ComponentValue<Real>::none, Real(0), {nullptr, 0, nullptr, 0}};
+      ActiveTensionFunctor<D, Real> f{{a->component, none, none},
+                                      Real(a->k),
+                                      Real(t),
+                                      Real(dt),
+                                      Real(scene_->bodies[a->body].spacing),
+                                      ranges_[a->body].begin,
+                                      v.reference_position,
+                                      v.displacement,
+                                      v.velocity,
+                                      v.active_tension};
+      pending_.push_back(Pending{
+          nullptr, nullptr, nullptr, a.get(), a->body, &body_external_work_, t, 0.0, step,
+          results.reduce(Index(0), ranges_[a->body].size(), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
+    }
+  }
 
   // Loads at t + dt/2, after the force stage (t: time at the start of the
   // step). Their sums stay in `results` until collect().
@@ -120,7 +140,7 @@ class TlsphConditions {
                              Real(1.0 / double(n)),
                              v.velocity,
                              v.acceleration};
-      pending_.push_back(Pending{c.get(), nullptr, nullptr, c->body, &body_external_work_, te, dt, step,
+      pending_.push_back(Pending{c.get(), nullptr, nullptr, nullptr, c->body, &body_external_work_, te, dt, step,
                                  results.reduce(Index(0), n, f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
     }
   }
@@ -150,7 +170,7 @@ class TlsphConditions {
                                v.velocity};
         for (int a = 0; a < D; ++a) f.point.v[a] = Real(w.spec->point[a]), f.normal.v[a] = Real(w.spec->normal[a]);
         pending_.push_back(Pending{
-            nullptr, &w, nullptr, b, &body_boundary_work_, te, dt, step,
+            nullptr, &w, nullptr, nullptr, b, &body_boundary_work_, te, dt, step,
             results.reduce(Index(0), ranges_[b].size(), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
       }
     }
@@ -173,6 +193,10 @@ class TlsphConditions {
     pending.swap(pending_);
     for (const Pending& p : pending) {
       const ConditionSums<Real> s = results.get(p.slot);
+      if (p.potential) {
+        if (s.error.particle != kNoConditionError) report_potential_error(*p.potential, s.error, v, p.te, p.step);
+        continue;
+      }
       Point3& force = p.condition ? p.condition->force : p.wall ? p.wall->force : p.clamp->force;
       for (int a = 0; a < 3; ++a) force[a] += double(s.force[a]);
       if (p.dt > 0) (*p.work)[p.body] += double(s.power) * p.dt;
@@ -240,6 +264,34 @@ class TlsphConditions {
     bool active(double t) const { return t >= spec->t_start && t <= spec->t_end; }
   };
 
+  // A time-dependent active potential of a Holzapfel-Ogden body.
+  struct ActivePotential {
+    size_t body = 0;
+    std::string path;
+    double k = 0;  // tension_per_potential
+    expr::Program program;
+    DeviceVector<B, expr::Instr> code;
+    DeviceVector<B, Real> consts;
+    ComponentValue<Real> component{};
+  };
+
+  // A compiled expression as a component: a constant, or a program whose
+  // code and constants are uploaded into `code` and `consts`.
+  static ComponentValue<Real> compile_component(const expr::Program& p, const std::string& path,
+                                                DeviceVector<B, expr::Instr>& code, DeviceVector<B, Real>& consts) {
+    if (p.is_constant()) return ComponentValue<Real>{ComponentValue<Real>::constant, Real(p.constant_value()), {}};
+    expr::ProgramView<Real> view;
+    try {
+      view = p.template host_view<Real>();  // checks the float range
+    } catch (const expr::ExpressionError& e) {
+      throw SceneError(path + ": " + e.what());
+    }
+    from_host<B>(p.code(), code);
+    from_host<B>(std::vector<Real>(view.consts, view.consts + view.n_consts), consts);
+    return ComponentValue<Real>{ComponentValue<Real>::program, Real(0),
+                                expr::ProgramView<Real>{raw(code), int(p.code().size()), raw(consts), view.n_consts}};
+  }
+
   static void upload_indices(const std::vector<long>& ids, const std::vector<Index>& where,
                              DeviceVector<B, Index>& out) {
     std::vector<Index> index;
@@ -262,7 +314,7 @@ class TlsphConditions {
                 DeviceResults<B>& results) {
     VelocityConditionFunctor<D, Real> f{selected(c, v, te, dt), v.acceleration, v.velocity};
     pending_.push_back(
-        Pending{&c, nullptr, nullptr, c.body, &body_boundary_work_, te, dt, step,
+        Pending{&c, nullptr, nullptr, nullptr, c.body, &body_boundary_work_, te, dt, step,
                 results.reduce(Index(0), Index(c.count), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
   }
 
@@ -285,7 +337,7 @@ class TlsphConditions {
     k.force = Point3{0, 0, 0};
     // A clamp's reaction does no work (the particle does not move): power 0.
     pending_.push_back(Pending{
-        nullptr, nullptr, &k, k.body, &body_boundary_work_, 0.0, dt, step,
+        nullptr, nullptr, &k, nullptr, k.body, &body_boundary_work_, 0.0, dt, step,
         results.reduce(Index(0), Index(k.particles.size()), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
   }
 
@@ -294,10 +346,7 @@ class TlsphConditions {
     const char* axis[3] = {"x", "y", "z"};
     const expr::Program& p = c.program[error.component];
     const Index i = error.particle;
-    const Vec<D, Real> X = copy_element<B>(v.reference_position, i);
-    std::string where = "x0 = (";
-    for (int a = 0; a < D; ++a) where += (a ? ", " : "") + std::to_string(double(X.v[a]));
-    where += ")";
+    const std::string where = reference_position_text(v, i);
     const bool load = c.spec->type != ConditionSpec::Type::velocity;
     throw NumericalFailure(
         step, te, long(copy_element<B>(id_, i)), c.spec->body,
@@ -305,12 +354,29 @@ class TlsphConditions {
         p.describe_error(expr::Status(error.status), error.pc) + " at " + where);
   }
 
+  std::string reference_position_text(const TlsphViews<D, Real>& v, Index i) const {
+    const Vec<D, Real> X = copy_element<B>(v.reference_position, i);
+    std::string where = "x0 = (";
+    for (int a = 0; a < D; ++a) where += (a ? ", " : "") + std::to_string(double(X.v[a]));
+    return where + ")";
+  }
+
+  void report_potential_error(const ActivePotential& a, const ConditionError& error, const TlsphViews<D, Real>& v,
+                              double t, long step) {
+    const Index i = error.particle;
+    throw NumericalFailure(step, t, long(copy_element<B>(id_, i)), scene_->bodies[a.body].name,
+                           "active_stress potential (" + a.path + ")",
+                           a.program.describe_error(expr::Status(error.status), error.pc) + " at " +
+                               reference_position_text(v, i) + ", t = " + std::to_string(t));
+  }
+
   // A reduction of this step whose sums wait in DeviceResults: the owner
-  // (one of condition, wall, clamp) and where its work goes.
+  // (one of condition, wall, clamp, potential) and where its work goes.
   struct Pending {
     Condition* condition;
     Wall* wall;
     Clamp* clamp;
+    ActivePotential* potential;
     size_t body;
     std::vector<double>* work;  // external or boundary work per body
     double te, dt;
@@ -324,6 +390,7 @@ class TlsphConditions {
   std::vector<Wall> walls_;
   std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<Condition>> conditions_;
+  std::vector<std::unique_ptr<ActivePotential>> potentials_;
   std::vector<Pending> pending_;
   std::vector<double> body_external_work_, body_boundary_work_;
 };

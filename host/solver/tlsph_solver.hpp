@@ -303,6 +303,7 @@ class TlsphSolver final : public Solver {
     }
     results_.clear();
     conditions_.apply_initial(v_, results_);  // velocity conditions at t = 0, clamps
+    conditions_.apply_fields(v_, 0.0, 0.0, 0, results_);  // time-dependent active potentials at t = 0
     results_.fetch();
     conditions_.collect(results_, v_);
 
@@ -341,6 +342,7 @@ class TlsphSolver final : public Solver {
     const Real half_dt = Real(0.5 * dt);
     results_.clear();
     run("stress", [&] {
+      conditions_.apply_fields(v_, time_ + 0.5 * dt, dt, steps_ + 1, results_);
       for (auto& k : bodies_) k->prepare_step(time_ + 0.5 * dt);
       for (auto& k : bodies_) k->stress(v_, half_dt);
     });

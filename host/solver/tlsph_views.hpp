@@ -35,7 +35,7 @@ struct TlsphViews {
   // When some body is Holzapfel-Ogden, else null:
   const Vec<D, Real>* fibre;    // f0
   const Vec<D, Real>* sheet;    // s0
-  const Real* active_tension;   // k V_m
+  Real* active_tension;         // k V_m (written each step for a time-dependent V_m)
   Real* stiffening;             // current / reference longitudinal modulus, for the time step
   Real* active_work;            // work of the active stress on the body per V0 (when some body has one)
   PhaseFieldViews<Real> phase;  // when some body has fracture, else all null

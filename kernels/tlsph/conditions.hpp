@@ -198,6 +198,34 @@ struct LoadFunctor {
   }
 };
 
+// A time-dependent transmembrane potential (seed 000 eq. 19, 43): at the
+// stress stage's time t, active_tension_i = k V_m(particle variables, t) for
+// the particles [begin, begin + n) of a Holzapfel-Ogden body; 'skip' keeps the
+// last value. The sums carry only the first run-time expression error.
+template <int D, class Real>
+struct ActiveTensionFunctor {
+  ComponentValue<Real> potential[3];  // [0]: V_m; [1], [2]: none
+  Real tension_per_potential;         // k (T_a = k V_m, seed 000 eq. 43)
+  Real t, dt, dx;
+  Index begin;
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  const Vec<D, Real>* velocity;
+  Real* active_tension;
+
+  MFSD_HD ConditionSums<Real> operator()(Index k) const {
+    ConditionSums<Real> s = ConditionSums<Real>::zero();
+    const Index i = begin + k;
+    Real value[3] = {Real(0), Real(0), Real(0)};
+    int mask = 0;
+    if (!evaluate_components<D, Real>(potential, reference_position[i], displacement[i], velocity[i], t, dt, dx, i,
+                                      value, mask, s.error))
+      return s;
+    if (mask & 1) active_tension[i] = tension_per_potential * value[0];
+    return s;
+  }
+};
+
 template <int D, class Real>
 struct VelocityConditionFunctor {
   SelectedComponents<D, Real> sel;   // t = t^n + dt

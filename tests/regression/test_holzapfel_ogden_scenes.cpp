@@ -2,7 +2,8 @@
 //  - muscle contraction cube (configs/muscle_contraction_3d.json, dp = 0.1):
 //    top displacement at t = 1.2 s against seed 000 Table 5 (0.4988 at
 //    dp = 0.1), the energy balance with the active stress's work, and the
-//    stiffening time step;
+//    stiffening time step; a time-dependent potential against the ramp, and
+//    its run-time errors;
 //  - bending column (configs/bending_column_ho_3d.json, H/dp = 6): the first
 //    minimum of z(S) rises with a_f / a (seed 000 Fig. 9), and the isotropic
 //    column stays within the H/dp = 6 neo-Hookean answer's band.
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <string>
 
+#include "host/solver/numerical_failure.hpp"
 #include "scene_runner.hpp"
 
 using namespace mfsd;
@@ -32,6 +34,37 @@ TEST(MuscleContraction, TopDisplacementAndEnergyBalance) {
   // Kinetic + strain + damping = active work, to 1 % of it.
   EXPECT_NEAR(b.balance(), 0.0, 0.01 * b.active_work);
   EXPECT_GT(b.damping, 0.3 * b.active_work);
+}
+
+// A potential that reads t is evaluated each step on the device: the seed's
+// ramp written into V_m (ramp_time 0) runs the same cube as ramp_time = 1 s.
+TEST(MuscleContraction, TimeDependentPotentialMatchesTheRamp) {
+  const std::vector<std::string> common = {"solver.end_time=0.3"};
+  auto ramp = test::run_config("muscle_contraction_3d.json", common);
+  auto in_vm =
+      test::run_config("muscle_contraction_3d.json",
+                       {"solver.end_time=0.3", "bodies.muscle.material.active_stress.ramp_time=0",
+                        "bodies.muscle.material.active_stress.potential=\"V_top * max(x0, 0) / L * min(t / 1.0, 1)\""});
+  ASSERT_EQ(ramp.solver->steps(), in_vm.solver->steps());
+  const double u = ramp.probes.back()[0].displacement[0];
+  EXPECT_GT(u, 0.01);
+  EXPECT_NEAR(in_vm.probes.back()[0].displacement[0], u, 1e-9 * u);
+  EXPECT_NEAR(in_vm.solver->energies().bodies[0].active_work, ramp.solver->energies().bodies[0].active_work,
+              1e-9 * ramp.solver->energies().bodies[0].active_work);
+}
+
+TEST(MuscleContraction, PotentialErrorStopsTheRunNamingPathAndParticle) {
+  try {
+    test::run_config(
+        "muscle_contraction_3d.json",
+        {"solver.end_time=0.3", "bodies.muscle.material.active_stress.potential=\"30 * x0 * sqrt(0.05 - t)\""});
+    ADD_FAILURE() << "no error";
+  } catch (const NumericalFailure& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("/bodies/0/material/active_stress/potential"), std::string::npos) << m;
+    EXPECT_NE(m.find("sqrt"), std::string::npos) << m;
+    EXPECT_NE(m.find("x0 = ("), std::string::npos) << m;
+  }
 }
 
 namespace {
