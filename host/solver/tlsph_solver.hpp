@@ -804,7 +804,22 @@ class TlsphSolver final : public Solver {
     }
     // Contact springs and dashpots (kernels/contact/contact_force.hpp).
     if (contact_.inverse_stable_step() > 0) dt = std::min(dt, 1.0 / contact_.inverse_stable_step());
-    dt_next_ = scene_.solver.cfl * dt;
+    dt_next_ = std::min(scene_.solver.cfl * dt, damping_step_limit());
+  }
+
+  // The Kelvin-Voigt damping stress is explicit, a diffusion of velocity with
+  // nu = factor h c0 / 2: its diffusion number nu dt / h^2 must stay below
+  // kDampingDiffusionNumber whatever the CFL number (docs/theory.md, "Time
+  // step"). 0.3 is the papers' own setting (factor 1, CFL 0.6), which it
+  // leaves unchanged.
+  static constexpr double kDampingDiffusionNumber = 0.3;
+  double damping_step_limit() {
+    double dt = std::numeric_limits<double>::infinity();
+    const double factor = scene_.solver.damping_factor;
+    if (factor > 0)
+      for (size_t b = 0; b < scene_.bodies.size(); ++b)
+        dt = std::min(dt, kDampingDiffusionNumber * 2.0 * props(b).h / (factor * props(b).c0));
+    return dt;
   }
 
   // The fastest wave of a body: c0, or the phase field's speed limit where it is larger.

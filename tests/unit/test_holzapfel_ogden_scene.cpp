@@ -97,7 +97,7 @@ TEST(HolzapfelOgdenScene, InputErrorsNameTheirPath) {
       {R"("a": 1, "b": 1)", "/bodies/0/material"},
       {R"("a": 1, "b": 1, "bulk_modulus": 0.5)", "/bodies/0/material/bulk_modulus"},
       {R"("a": 1, "b": 1, "youngs_modulus": 1e6, )" + K, "/bodies/0/material"},
-      {R"("a": 1, "b": 1, "active_stress": {"potential": "t", "tension_per_potential": 1}, "fibre": {"x": 1}, )" + K,
+      {R"("a": 1, "b": 1, "active_stress": {"potential": "30 * w0", "tension_per_potential": 1}, "fibre": {"x": 1}, )" + K,
        "/bodies/0/material/active_stress/potential"},
       {R"("a": 1, "b": 1, )" + K, "/solver/hourglass", "laplacian"},
   };
