@@ -302,7 +302,7 @@ class TlsphSolver final : public Solver {
       parallel_for<B>(n, AddIdentityFunctor<D, Real>{v_.deformation_rate, v_.deformation_gradient});
     }
     results_.clear();
-    conditions_.apply_initial(v_, results_);  // velocity conditions at t = 0, clamps
+    conditions_.apply_initial(v_, results_);              // velocity conditions at t = 0, clamps
     conditions_.apply_fields(v_, 0.0, 0.0, 0, results_);  // time-dependent active potentials at t = 0
     results_.fetch();
     conditions_.collect(results_, v_);

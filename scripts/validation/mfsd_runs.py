@@ -40,14 +40,27 @@ def run(config, sets, outdir, extra=(), quiet=True):
     return subprocess.run(cmd).returncode
 
 
-def run_and_read(config, sets, outdir, threads=0, reuse=False):
+def run_and_read(config, sets, outdir, threads=0, reuse=False, allow_failure=False):
     """Runs a scene (unless `reuse` and outdir already holds a finished run)
     and returns (probes.csv, energies.csv, timing.json) of it; timing gets
-    the commit of the binary that made the run (from run.json)."""
-    if not (reuse and os.path.exists(os.path.join(outdir, "timing.json"))):
+    the commit of the binary that made the run (from run.json). A failed run
+    ends the study, unless allow_failure: then the rows written before the
+    failure are returned and timing is {"failed_with_exit_code": rc}."""
+    failed = os.path.join(outdir, "failed_with_exit_code")
+    if not (reuse and (os.path.exists(os.path.join(outdir, "timing.json")) or os.path.exists(failed))):
+        if os.path.exists(failed):
+            os.remove(failed)
         rc = run(config, sets, outdir, ["--threads", str(threads)] if threads else [])
-        if rc != 0:
+        if rc != 0 and not allow_failure:
             sys.exit(f"[mfsd] run {outdir} failed with exit code {rc}")
+        if rc != 0:
+            with open(failed, "w") as f:
+                f.write(f"{rc}\n")
+    if os.path.exists(failed):
+        with open(failed) as f:
+            rc = int(f.read())
+        return (read_csv(os.path.join(outdir, "probes.csv")), read_csv(os.path.join(outdir, "energies.csv")),
+                {"failed_with_exit_code": rc})
     timing = read_json(os.path.join(outdir, "timing.json"))
     timing["mfsd_commit_of_the_run"] = read_json(os.path.join(outdir, "run.json")).get("git_commit")
     return read_csv(os.path.join(outdir, "probes.csv")), read_csv(os.path.join(outdir, "energies.csv")), timing
