@@ -18,7 +18,7 @@
 
 using namespace mfsd;
 
-// Measured (scripts/validation/muscle.py): 0.48864 at dp = 0.1, 454 steps.
+// Measured (scripts/validation/holzapfel_ogden.py muscle): 0.48864 at dp = 0.1, 454 steps.
 // The seed's 0.4988 is 2.0 % higher; the 2 % band is not met at this
 // resolution (docs/validation.md, "Muscle contraction"), so the test guards
 // the measured value and the seed's order of magnitude separately.
