@@ -165,7 +165,10 @@ TEST_F(Restart, EveryStopLeavesWholeFiles) {
   EXPECT_TRUE(fs::exists(fs::path(out("term")) / "checkpoint" / "state.bin"));
   // A second signal ends the process at once (two kinds, which do not merge).
   const Result twice = shell("(" + run + out("twice") + " & p=$!; sleep 0.5; kill -TERM $p; kill -INT $p; wait $p)");
-  EXPECT_EQ(twice.code, 130) << twice.output;  // the shell's 128 + SIGINT for a process killed by it
+  // The shell's 128 + the signal that killed it: the second one handled. Which
+  // of the two that is depends on delivery order (two pending signals go
+  // lowest number first, and to any thread): CI once saw 143.
+  EXPECT_TRUE(twice.code == 130 || twice.code == 143) << twice.code << "\n" << twice.output;
   EXPECT_NE(twice.output.find("second signal"), std::string::npos) << twice.output;
   expect_whole_files(out("twice"));
   const Result kill = shell("timeout -s KILL 0.5 " + run + out("kill"));
