@@ -1,11 +1,14 @@
 // Test helper: runs a scene of configs/ through the library (no files
 // written) and records the probes at every step.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
 
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_reader.hpp"
+#include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
 
 namespace mfsd::test {
@@ -53,6 +56,18 @@ inline Trace run_config(const std::string& name, const std::vector<std::string>&
 
 // Oscillation period from the zero crossings of s(t) = y(t) - y(0): a least-
 // squares fit t_k = t_0 + k T/2 over all crossings (the start is one).
+// Runs a scene that must stop with a NumericalFailure; returns its message
+// ("" and a test failure when it ran to the end).
+inline std::string numerical_failure_message(const std::string& name, const std::vector<std::string>& overrides) {
+  try {
+    run_config(name, overrides);
+  } catch (const NumericalFailure& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << name << " ran without a numerical failure";
+  return "";
+}
+
 inline double oscillation_period(const std::vector<double>& t, const std::vector<double>& y) {
   std::vector<double> crossings{t.front()};
   const double y0 = y.front();
