@@ -5,7 +5,7 @@
 #include "host/expr/expression_error.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_error.hpp"
-#include "kernels/tlsph/conditions.hpp"
+#include "kernels/expr/particle_variables.hpp"
 
 namespace mfsd {
 

@@ -15,7 +15,7 @@
 #include "host/scene/scene_error.hpp"
 #include "host/scene/surface.hpp"
 #include "kernels/expr/interpreter.hpp"
-#include "kernels/tlsph/conditions.hpp"
+#include "kernels/expr/particle_variables.hpp"
 
 namespace mfsd {
 
