@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "host/backend/backend.hpp"
-#include "host/solver/stage_timers.hpp"
+#include "host/backend/stage_timers.hpp"
 
 namespace mfsd {
 

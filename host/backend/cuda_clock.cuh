@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "host/backend/cuda.cuh"
-#include "host/solver/stage_timers.hpp"
+#include "host/backend/stage_timers.hpp"
 
 namespace mfsd {
 

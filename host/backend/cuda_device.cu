@@ -11,7 +11,7 @@
 #include <string>
 
 #include "host/backend/cuda.cuh"
-#include "host/solver/solver.hpp"
+#include "host/backend/cuda_devices.hpp"
 
 namespace mfsd {
 

@@ -1,7 +1,7 @@
 // CUDA device queries of a CPU-only build.
 #include <string>
 
-#include "host/solver/solver.hpp"
+#include "host/backend/cuda_devices.hpp"
 
 namespace mfsd {
 bool cuda_compiled() { return false; }

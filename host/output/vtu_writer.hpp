@@ -1,10 +1,11 @@
 // VTK XML unstructured-grid snapshot (.vtu) with raw appended binary data:
 // one vertex cell per particle, point data id, body, constrained,
-// displacement, velocity, von_mises, J and hourglass. Opens in ParaView.
+// displacement, velocity, then every named field of the snapshot. Opens in
+// ParaView.
 #pragma once
 #include <string>
 
-#include "host/solver/solver.hpp"
+#include "host/output/snapshot.hpp"
 
 namespace mfsd {
 

@@ -7,37 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "host/backend/cuda_devices.hpp"
+#include "host/backend/stage_timers.hpp"
+#include "host/output/snapshot.hpp"
 #include "host/particles/state_archive.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene.hpp"
-#include "host/solver/stage_timers.hpp"
 
 namespace mfsd {
-
-// Host copies of the particle fields, in double, 3 components per vector
-// (z = 0 in 2-D), in the solver's current particle order: the kinematics,
-// then the per-particle scalars a solver or model registers by name (von_mises,
-// J, hourglass, von_mises_strain, plastic_strain with a J2 body, phase_field
-// with a fracturing body, ...); every writer writes each under its name, so a
-// new output field is one registration in the solver.
-struct Snapshot {
-  size_t n = 0;
-  std::vector<long> id;
-  std::vector<int> body;
-  std::vector<unsigned char> constrained;
-  std::vector<double> position, displacement, velocity;  // 3 n
-  struct Field {
-    std::string name;
-    std::vector<double> values;  // n
-  };
-  std::vector<Field> fields;
-  // The named field, or null.
-  const std::vector<double>* field(const std::string& name) const {
-    for (const auto& f : fields)
-      if (f.name == name) return &f.values;
-    return nullptr;
-  }
-};
 
 // Energies of one body (J; per metre of depth in 2-D). Work done on the body
 // by its loads (external) and by its velocity conditions and clamps
@@ -156,11 +133,5 @@ struct SolverOptions {
 // Factory: picks the instantiation for backend x precision x dimension.
 std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& particles,
                                     const SolverOptions& options);
-
-// CUDA availability: compiled in, and a device present.
-bool cuda_compiled();
-int cuda_device_count();
-std::string cuda_device_name();
-double cuda_device_free_bytes();  // of device 0; 0 without one
 
 }  // namespace mfsd
