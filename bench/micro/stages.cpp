@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "host/backend/cpu.hpp"
-#include "host/neighbors/reference_neighbor_list.hpp"
+#include "host/solver/tlsph/reference_neighbor_list.hpp"
 #include "host/particles/field_names.hpp"
 #include "kernels/materials/neo_hookean.hpp"
 #include "kernels/tlsph/acceleration.hpp"

@@ -8,7 +8,7 @@
 #include "host/scene/body_properties.hpp"
 #include "host/scene/particle_expressions.hpp"
 #include "kernels/expr/interpreter.hpp"
-#include "kernels/tlsph/conditions.hpp"
+#include "kernels/bc/conditions.hpp"
 
 namespace mfsd {
 

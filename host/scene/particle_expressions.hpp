@@ -1,6 +1,6 @@
 // Compiling the user expressions that are evaluated per particle during a run
 // (velocity conditions and loads): the variable table in the slot order of
-// kernels/tlsph/conditions.hpp and the constants of the particle's body.
+// kernels/bc/conditions.hpp and the constants of the particle's body.
 #pragma once
 #include <string>
 

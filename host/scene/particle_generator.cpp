@@ -442,7 +442,7 @@ void material_directions(const Scene& scene, size_t b, const std::string& path, 
                          "a sheet direction orthogonal to the fibre (|f0 . s0| <= 1e-3)");
     }
   // A potential that reads t (or the motion) is evaluated each step on the
-  // device (host/solver/tlsph_conditions.hpp); this one at set-up.
+  // device (host/solver/common/conditions.hpp); this one at set-up.
   const std::string vpath = path + "/active_stress/potential";
   if (h.active.enabled &&
       reads_only_reference_position(compile_particle_expression(h.active.potential, scene, b, vpath))) {

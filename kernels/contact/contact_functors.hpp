@@ -28,7 +28,7 @@
 #include "kernels/contact/contact_force.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/neighbors/cell_list.hpp"
-#include "kernels/tlsph/step_force.hpp"
+#include "kernels/bc/step_force.hpp"
 
 namespace mfsd {
 

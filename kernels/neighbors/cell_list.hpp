@@ -6,20 +6,25 @@
 // (bodies interact by contact, not through the reference list), so bodies far
 // apart cost no cells between them.
 #pragma once
+#include <type_traits>
+
 #include "kernels/core/vec.hpp"
 #include "kernels/fracture/notch.hpp"
 
 namespace mfsd {
 
-template <int D>
+// P: the precision of the positions searched (double for the reference
+// search at set-up, Real for the current-configuration search of a step, so
+// that a float run does no double arithmetic per step).
+template <int D, class P = double>
 struct CellGrid {
-  double origin[D];
-  double inv_cell_size;
+  P origin[D];
+  P inv_cell_size;
   int dims[D];
   std::int64_t cells;      // dims[0] x ... x dims[D-1]
   std::int64_t first_key;  // keys of this grid: [first_key, first_key + cells)
 
-  MFSD_HD int coordinate(int axis, double x) const {
+  MFSD_HD int coordinate(int axis, P x) const {
     int c = int(math::floor((x - origin[axis]) * inv_cell_size));
     return c < 0 ? 0 : (c >= dims[axis] ? dims[axis] - 1 : c);
   }
@@ -31,10 +36,10 @@ struct CellGrid {
 };
 
 // key_i = first key of body_i's grid + cell(X_i)
-template <int D>
+template <int D, class P = double>
 struct CellKeyFunctor {
-  const CellGrid<D>* grids;  // per body
-  const Vec<D, double>* position;
+  const CellGrid<D, P>* grids;  // per body
+  const Vec<D, P>* position;
   const int* body;
   std::int64_t* key;
 
@@ -62,22 +67,22 @@ struct CellRangeFunctor {
 
 // Visits every j != i of the same body with |X_i - X_j| < radius whose pair
 // no notch cuts (kernels/fracture/notch.hpp); the visitor receives
-// (j, X_i - X_j, |X_i - X_j|).
-template <int D>
+// (j, X_i - X_j, |X_i - X_j|) in the positions' precision P.
+template <int D, class P = double>
 struct CellNeighborhood {
-  const CellGrid<D>* grids;  // per body
-  const Vec<D, double>* position;
+  const CellGrid<D, P>* grids;  // per body
+  const Vec<D, P>* position;
   const int* body;
   const Index* start;
   const Index* end;
   const Index* order;  // cell-sorted position -> particle index; null = identity (reordered set)
-  double radius2;
-  NotchSet<D> notches;  // pair mask; empty without notches
+  P radius2;
+  NotchSet<D> notches;  // pair mask; empty without notches (reference search only)
 
   template <class Visitor>
   MFSD_HD void for_each(Index i, Visitor& visit) const {
-    const Vec<D, double> xi = position[i];
-    const CellGrid<D>& grid = grids[body[i]];
+    const Vec<D, P> xi = position[i];
+    const CellGrid<D, P>& grid = grids[body[i]];
     int c[D], lo[D], hi[D];
     for (int a = 0; a < D; ++a) {
       c[a] = grid.coordinate(a, xi.v[a]);
@@ -97,29 +102,37 @@ struct CellNeighborhood {
   }
 
  private:
+  // Notches cut pairs of the reference search (double positions) only.
+  MFSD_HD bool cut(Index i, const Vec<D, P>& xi, const Vec<D, P>& xj) const {
+    if constexpr (std::is_same<P, double>::value)
+      return notches.count && notches.cuts(body[i], xi, xj);
+    else
+      return false;
+  }
+
   template <class Visitor>
-  MFSD_HD void visit_cell(Index i, const Vec<D, double>& xi, std::int64_t k, Visitor& visit) const {
+  MFSD_HD void visit_cell(Index i, const Vec<D, P>& xi, std::int64_t k, Visitor& visit) const {
     for (Index s = start[k]; s < end[k]; ++s) {
       const Index j = order ? order[s] : s;
       if (j == i) continue;
-      const Vec<D, double> d = xi - position[j];
-      const double r2 = squared_norm(d);
-      if (r2 < radius2 && !(notches.count && notches.cuts(body[i], xi, position[j]))) visit(j, d, math::sqrt(r2));
+      const Vec<D, P> d = xi - position[j];
+      const P r2 = squared_norm(d);
+      if (r2 < radius2 && !cut(i, xi, position[j])) visit(j, d, math::sqrt(r2));
     }
   }
 };
 
 struct CountVisitor {
   Index count = 0;
-  template <class V>
-  MFSD_HD void operator()(Index, const V&, double) {
+  template <class V, class P>
+  MFSD_HD void operator()(Index, const V&, P) {
     ++count;
   }
 };
 
-template <int D>
+template <int D, class P = double>
 struct NeighborCountFunctor {
-  CellNeighborhood<D> hood;
+  CellNeighborhood<D, P> hood;
   Index* count;
   MFSD_HD void operator()(Index i) const {
     CountVisitor v;

@@ -17,7 +17,7 @@
 // every pair (each once, from its lower index) over tau = dt/2, then the same
 // pairs in exactly the reverse order over dt/2 (a symmetric Gauss-Seidel
 // sweep). The ref.'s random choice applies the whole operator in a step with
-// probability p, with eta / p (host/solver/tlsph_relaxation.hpp).
+// probability p, with eta / p (host/solver/tlsph/tlsph_relaxation.hpp).
 //
 // Gauss-Seidel updates two particles per pair, so the sweep runs in colours:
 // cells of the reference grid with an edge >= the support radius, coloured by

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "host/backend/cpu.hpp"
-#include "host/neighbors/reference_neighbor_list.hpp"
+#include "host/solver/tlsph/reference_neighbor_list.hpp"
 #include "host/particles/field_names.hpp"
 
 namespace mfsd::test {

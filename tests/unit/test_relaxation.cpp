@@ -1,4 +1,4 @@
-// Dynamic relaxation (kernels/tlsph/relaxation.hpp, host/solver/tlsph_relaxation.hpp):
+// Dynamic relaxation (kernels/tlsph/relaxation.hpp, host/solver/tlsph/tlsph_relaxation.hpp):
 // the coloured Gauss-Seidel sweeps keep each body's momentum to round-off and
 // remove exactly the kinetic energy they report; for a small viscosity a step
 // equals the explicit SPH Laplacian step summed by brute force over all
@@ -11,7 +11,7 @@
 #include <random>
 #include <set>
 
-#include "host/solver/tlsph_relaxation.hpp"
+#include "host/solver/tlsph/tlsph_relaxation.hpp"
 #include "kernels/sph/wendland_c2.hpp"
 #include "particle_fixture.hpp"
 

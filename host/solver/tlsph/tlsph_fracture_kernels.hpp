@@ -3,7 +3,7 @@
 // (kernels/fracture/fracture_stress.hpp) and the two phase-field passes of a
 // step (kernels/fracture/phase_field.hpp).
 #pragma once
-#include "host/solver/tlsph_body_kernels.hpp"
+#include "host/solver/tlsph/tlsph_body_kernels.hpp"
 #include "kernels/fracture/fracture_stress.hpp"
 #include "kernels/fracture/phase_field.hpp"
 

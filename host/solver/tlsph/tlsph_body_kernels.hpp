@@ -11,7 +11,7 @@
 #include "host/backend/algorithms.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
-#include "host/solver/tlsph_views.hpp"
+#include "host/solver/tlsph/tlsph_views.hpp"
 #include "kernels/materials/holzapfel_ogden.hpp"
 #include "kernels/materials/j2_plastic.hpp"
 #include "kernels/materials/neo_hookean.hpp"

@@ -1,4 +1,4 @@
-// Contact of a TLSPH run on one backend (scene.contact): the candidates (the
+// Contact of a run on one backend, any method (scene.contact): the candidates (the
 // particles of the bodies in contact, then the surface markers of the rigid
 // bodies that push them), the current-configuration cell search of each step
 // and the pair forces of kernels/contact. Runs after the force stage, at the
@@ -22,14 +22,14 @@
 #include "host/scene/body_properties.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/rigid_body.hpp"
+#include "host/solver/common/kinematics.hpp"
 #include "host/solver/solver.hpp"
-#include "host/solver/tlsph_views.hpp"
 #include "kernels/contact/contact_functors.hpp"
 
 namespace mfsd {
 
 template <class B, int D, class Real>
-class TlsphContact {
+class Contact {
  public:
   bool enabled() const { return enabled_; }
 
@@ -110,7 +110,7 @@ class TlsphContact {
   // Contact forces at the half-step positions (t: start of the step); v and a
   // of the touching particles change like under a load. The sums (time-step
   // bound, work, rigid-body forces) stay in `results` until collect().
-  void apply(const TlsphViews<D, Real>& view, double t, double dt, DeviceResults<B>& results) {
+  void apply(const Kinematics<D, Real>& view, double t, double dt, DeviceResults<B>& results) {
     if (!enabled_ || count_ == 0) return;
     place_rigid_bodies(t, dt);
     parallel_for<B>(

@@ -18,11 +18,11 @@
 
 #include "host/backend/algorithms.hpp"
 #include "host/backend/device_results.hpp"
-#include "host/neighbors/reference_neighbor_list.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/scene.hpp"
 #include "host/solver/solver.hpp"
-#include "host/solver/tlsph_views.hpp"
+#include "host/solver/tlsph/reference_neighbor_list.hpp"
+#include "host/solver/tlsph/tlsph_views.hpp"
 #include "kernels/tlsph/relaxation.hpp"
 
 namespace mfsd {

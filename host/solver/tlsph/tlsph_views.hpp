@@ -1,6 +1,7 @@
 // Raw views of the TLSPH particle fields and reference pairs, gathered once
 // after set-up (buffers never move afterwards) and handed to the functors.
 #pragma once
+#include "host/solver/common/kinematics.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/fracture/phase_field.hpp"
 #include "kernels/materials/j2_plastic.hpp"
@@ -10,13 +11,8 @@
 namespace mfsd {
 
 template <int D, class Real>
-struct TlsphViews {
+struct TlsphViews : Kinematics<D, Real> {
   ReferencePairs<D, Real> pairs;
-  const Vec<D, Real>* reference_position;
-  Vec<D, Real>* displacement;
-  Vec<D, Real>* velocity;
-  Vec<D, Real>* acceleration;
-  const Real* volume;
   Mat<D, Real>* deformation_gradient;
   Mat<D, Real>* deformation_rate;
   const Mat<D, Real>* correction;

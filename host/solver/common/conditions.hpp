@@ -1,7 +1,8 @@
-// Clamps, velocity conditions and loads of a TLSPH run on one backend: the
+// Clamps, velocity conditions, walls and loads of a run on one backend (any
+// method): the
 // selected particles (in the solver's order), the compiled expressions on
 // the device, and the work and force sums they produce for energies.csv and
-// boundary_forces.csv. The functors are in kernels/tlsph/conditions.hpp.
+// boundary_forces.csv. The functors are in kernels/bc/conditions.hpp.
 // Include after the backend header.
 #pragma once
 #include <algorithm>
@@ -17,15 +18,15 @@
 #include "host/scene/particle_expressions.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_error.hpp"
+#include "host/solver/common/kinematics.hpp"
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
-#include "host/solver/tlsph_views.hpp"
-#include "kernels/tlsph/conditions.hpp"
+#include "kernels/bc/conditions.hpp"
 
 namespace mfsd {
 
 template <class B, int D, class Real>
-class TlsphConditions {
+class Conditions {
  public:
   // `where[id]` is the current index of the particle with original id `id`.
   // Compiles the expressions of every condition and load for Real (before
@@ -104,7 +105,8 @@ class TlsphConditions {
   // Time-dependent active potentials at time t (the stress stage's time,
   // before it): active_tension = k V_m(t) on their bodies. A run-time
   // expression error is reported by collect().
-  void apply_fields(const TlsphViews<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
+  void apply_fields(const Kinematics<D, Real>& v, Real* active_tension, double t, double dt, long step,
+                    DeviceResults<B>& results) {
     for (auto& a : potentials_) {
       const ComponentValue<Real> none{ComponentValue<Real>::none, Real(0), {nullptr, 0, nullptr, 0}};
       ActiveTensionFunctor<D, Real> f{{a->component, none, none},
@@ -116,7 +118,7 @@ class TlsphConditions {
                                       v.reference_position,
                                       v.displacement,
                                       v.velocity,
-                                      v.active_tension};
+                                      active_tension};
       pending_.push_back(Pending{
           nullptr, nullptr, nullptr, a.get(), a->body, &body_external_work_, t, 0.0, step,
           results.reduce(Index(0), ranges_[a->body].size(), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
@@ -125,7 +127,7 @@ class TlsphConditions {
 
   // Loads at t + dt/2, after the force stage (t: time at the start of the
   // step). Their sums stay in `results` until collect().
-  void apply_loads(const TlsphViews<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
+  void apply_loads(const Kinematics<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
     const double te = t + 0.5 * dt;
     for (auto& c : conditions_) {
       if (c->spec->type == ConditionSpec::Type::velocity) continue;
@@ -146,7 +148,7 @@ class TlsphConditions {
   }
 
   // Velocity conditions at t + dt, then clamps (clamps win where both hold).
-  void apply_boundary(const TlsphViews<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
+  void apply_boundary(const Kinematics<D, Real>& v, double t, double dt, long step, DeviceResults<B>& results) {
     const double te = t + dt;
     for (auto& c : conditions_) {
       if (c->spec->type != ConditionSpec::Type::velocity) continue;
@@ -179,7 +181,7 @@ class TlsphConditions {
 
   // Velocity conditions whose window holds t = 0, and the clamps, at set-up
   // (no reaction, no work); their results are collected like a step's.
-  void apply_initial(const TlsphViews<D, Real>& v, DeviceResults<B>& results) {
+  void apply_initial(const Kinematics<D, Real>& v, DeviceResults<B>& results) {
     for (auto& c : conditions_)
       if (c->spec->type == ConditionSpec::Type::velocity && c->active(0.0)) velocity(*c, v, 0.0, 0.0, 0, results);
     for (auto& k : clamps_) clamp(k, v, 0.0, 0, results);
@@ -188,7 +190,7 @@ class TlsphConditions {
   // After results.fetch(): the forces and work of this step's conditions,
   // loads, walls and clamps; a run-time expression error stops the run with
   // the condition, the component, the error and the particle.
-  void collect(const DeviceResults<B>& results, const TlsphViews<D, Real>& v) {
+  void collect(const DeviceResults<B>& results, const Kinematics<D, Real>& v) {
     std::vector<Pending> pending;
     pending.swap(pending_);
     for (const Pending& p : pending) {
@@ -310,7 +312,7 @@ class TlsphConditions {
            std::to_string(k);
   }
 
-  void velocity(Condition& c, const TlsphViews<D, Real>& v, double te, double dt, long step,
+  void velocity(Condition& c, const Kinematics<D, Real>& v, double te, double dt, long step,
                 DeviceResults<B>& results) {
     VelocityConditionFunctor<D, Real> f{selected(c, v, te, dt), v.acceleration, v.velocity};
     pending_.push_back(
@@ -318,7 +320,7 @@ class TlsphConditions {
                 results.reduce(Index(0), Index(c.count), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
   }
 
-  SelectedComponents<D, Real> selected(const Condition& c, const TlsphViews<D, Real>& v, double te, double dt) const {
+  SelectedComponents<D, Real> selected(const Condition& c, const Kinematics<D, Real>& v, double te, double dt) const {
     return SelectedComponents<D, Real>{raw(c.particles),
                                        {c.component[0], c.component[1], c.component[2]},
                                        Real(scene_->bodies[c.body].material.density),
@@ -330,7 +332,7 @@ class TlsphConditions {
                                        v.volume};
   }
 
-  void clamp(Clamp& k, const TlsphViews<D, Real>& v, double dt, long step, DeviceResults<B>& results) {
+  void clamp(Clamp& k, const Kinematics<D, Real>& v, double dt, long step, DeviceResults<B>& results) {
     ClampReactionFunctor<D, Real> f{raw(k.particles), Real(scene_->bodies[k.body].material.density),
                                     Real(dt),         v.volume,
                                     v.displacement,   v.velocity};
@@ -341,7 +343,7 @@ class TlsphConditions {
         results.reduce(Index(0), Index(k.particles.size()), f, ConditionSums<Real>::zero(), ConditionSumsCombine{})});
   }
 
-  void report_error(const Condition& c, const ConditionError& error, const TlsphViews<D, Real>& v, double te,
+  void report_error(const Condition& c, const ConditionError& error, const Kinematics<D, Real>& v, double te,
                     long step) {
     const char* axis[3] = {"x", "y", "z"};
     const expr::Program& p = c.program[error.component];
@@ -354,14 +356,14 @@ class TlsphConditions {
         p.describe_error(expr::Status(error.status), error.pc) + " at " + where);
   }
 
-  std::string reference_position_text(const TlsphViews<D, Real>& v, Index i) const {
+  std::string reference_position_text(const Kinematics<D, Real>& v, Index i) const {
     const Vec<D, Real> X = copy_element<B>(v.reference_position, i);
     std::string where = "x0 = (";
     for (int a = 0; a < D; ++a) where += (a ? ", " : "") + std::to_string(double(X.v[a]));
     return where + ")";
   }
 
-  void report_potential_error(const ActivePotential& a, const ConditionError& error, const TlsphViews<D, Real>& v,
+  void report_potential_error(const ActivePotential& a, const ConditionError& error, const Kinematics<D, Real>& v,
                               double t, long step) {
     const Index i = error.particle;
     throw NumericalFailure(step, t, long(copy_element<B>(id_, i)), scene_->bodies[a.body].name,

@@ -30,18 +30,17 @@
 
 #include "host/backend/device_results.hpp"
 #include "host/backend/round_trips.hpp"
-#include "host/neighbors/reference_neighbor_list.hpp"
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
+#include "host/solver/common/particle_solver.hpp"
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
 #include "host/solver/stage_run.hpp"
-#include "host/solver/tlsph_body_kernels.hpp"
-#include "host/solver/tlsph_conditions.hpp"
-#include "host/solver/tlsph_contact.hpp"
-#include "host/solver/tlsph_fracture_kernels.hpp"
-#include "host/solver/tlsph_relaxation.hpp"
+#include "host/solver/tlsph/reference_neighbor_list.hpp"
+#include "host/solver/tlsph/tlsph_body_kernels.hpp"
+#include "host/solver/tlsph/tlsph_fracture_kernels.hpp"
+#include "host/solver/tlsph/tlsph_relaxation.hpp"
 #include "kernels/fracture/crack_tip.hpp"
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
@@ -72,55 +71,6 @@ struct AddIdentityFunctor {
   MFSD_HD void operator()(Index i) const { F[i] = Mat<D, Real>::identity() + grad_u[i]; }
 };
 
-// Copies selected particles' fields into a small buffer (probes).
-template <int D, class Real>
-struct ProbeGatherFunctor {
-  const Index* index;
-  const Vec<D, Real>* reference_position;
-  const Vec<D, Real>* displacement;
-  const Vec<D, Real>* velocity;
-  const Real* von_mises;
-  const Real* jacobian;
-  const Real* von_mises_strain;
-  const Real* plastic_strain;  // null without plastic bodies
-  const Real* phase_field;     // null without fracture
-  Real* out;                   // per probe particle: x(D) u(D) v(D) vm J vm_strain plastic_strain s
-  MFSD_HD void operator()(Index k) const {
-    const Index i = index[k];
-    Real* o = out + k * (3 * D + 5);
-    for (int a = 0; a < D; ++a) {
-      o[a] = reference_position[i].v[a] + displacement[i].v[a];
-      o[D + a] = displacement[i].v[a];
-      o[2 * D + a] = velocity[i].v[a];
-    }
-    o[3 * D] = von_mises[i];
-    o[3 * D + 1] = jacobian[i];
-    o[3 * D + 2] = von_mises_strain[i];
-    o[3 * D + 3] = plastic_strain ? plastic_strain[i] : Real(0);
-    o[3 * D + 4] = phase_field ? phase_field[i] : Real(1);
-  }
-};
-
-// Displacement and force m a of measure-plane particles into a small buffer.
-template <int D, class Real>
-struct MeasureGatherFunctor {
-  const Index* index;
-  const Vec<D, Real>* displacement;
-  const Vec<D, Real>* acceleration;
-  const Real* volume;
-  const Real* density;  // per measured particle (its body's rho0)
-  Real* out;            // per particle: u(D) f(D)
-  MFSD_HD void operator()(Index k) const {
-    const Index i = index[k];
-    Real* o = out + k * (2 * D);
-    const Real m = density[k] * volume[i];
-    for (int a = 0; a < D; ++a) {
-      o[a] = displacement[i].v[a];
-      o[D + a] = m * acceleration[i].v[a];
-    }
-  }
-};
-
 template <class Real>
 struct MaxPlus {
   MFSD_HD Real operator()(Real a, Real b) const { return math::max(a, b); }
@@ -137,14 +87,16 @@ struct ReadScalarReal {
 };
 
 template <class B, int D, class Real>
-class TlsphSolver final : public Solver {
+class TlsphSolver final : public ParticleSolver<B, D, Real> {
+  using Base = ParticleSolver<B, D, Real>;
+  using Base::clock_, Base::conditions_, Base::contact_, Base::dt_next_, Base::init_, Base::options_, Base::particles_,
+      Base::probes_need_stress_, Base::ranges_, Base::report_, Base::results_, Base::scene_, Base::snapshot_fields_,
+      Base::stage_names_, Base::steps_, Base::time_, Base::timers_;
+  using Base::declare_stage, Base::props, Base::run;
+
  public:
   TlsphSolver(const Scene& scene, const InitialParticles& init, const SolverOptions& options)
-      : scene_(scene), init_(init), options_(options), particles_(Index(init.size())) {
-    for (const auto& p : scene.probes)
-      for (const auto& f : p.fields)
-        probes_need_stress_ =
-            probes_need_stress_ || f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain";
+      : Base(scene, init, options) {
     bool loads = false;
     for (const auto& c : scene.conditions) loads = loads || c.type != ConditionSpec::Type::velocity;
     has_fracture_ = has_fracture_body(scene);
@@ -153,24 +105,20 @@ class TlsphSolver final : public Solver {
                              "deformation_rate", "time_step"})
       if ((loads || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact") &&
           (scene.solver.relaxation.enabled || std::string(name) != "relaxation") &&
-          (has_fracture_ || std::string(name) != "phase_field")) {
-        timers_.id(name);
-        stage_names_ += (stage_names_.empty() ? "" : ", ") + std::string(name);
-      }
+          (has_fracture_ || std::string(name) != "phase_field"))
+        declare_stage(name);
     has_loads_ = loads;
     conditions_.compile(scene_);
   }
 
   void initialize() override {
     const Index n = particles_.size();
-    upload_initial_particles();
+    this->upload_kinematics();
+    upload_model_fields();
 
     // Reference neighbour search with reordering, then B0 (seed 000 eq. 21).
     std::vector<BodySearch> search;
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
-      ranges_.push_back(BodyRange{Index(init_.body_range[b].begin), Index(init_.body_range[b].end)});
-      search.push_back(BodySearch{ranges_.back(), props(b).h});
-    }
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) search.push_back(BodySearch{ranges_[b], props(b).h});
     const bool paper_limiter =
         scene_.solver.hourglass == HourglassControl::genog && scene_.solver.genog_limiter == GenogLimiter::paper;
     std::vector<Notch<D>> notches;  // pairs they cut are left out (seed 001 section 3.3.1)
@@ -230,8 +178,7 @@ class TlsphSolver final : public Solver {
 
     // Clamps, conditions, loads and probe particles, located after reordering.
     const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
-    std::vector<Index> where(ids.size());
-    for (size_t k = 0; k < ids.size(); ++k) where[size_t(ids[k])] = Index(k);
+    const std::vector<Index> where = this->locate();
     conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
     if (scene_.contact.enabled) {
       std::vector<BodyProperties> body_props;
@@ -272,27 +219,7 @@ class TlsphSolver final : public Solver {
       relaxation_.setup(scene_.solver.relaxation, ranges_, density, viscosity,
                         to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position)), support, held);
     }
-    std::vector<Index> probe_index;
-    probe_offsets_.assign(1, 0);
-    for (const auto& members : init_.probe_particles) {
-      for (long id : members) probe_index.push_back(where[size_t(id)]);
-      probe_offsets_.push_back(probe_index.size());
-    }
-    from_host<B>(probe_index, probe_index_);
-    std::vector<Index> measure_index;
-    std::vector<Real> measure_density;
-    measure_offsets_.assign(1, 0);
-    for (const auto& members : init_.measure_particles) {
-      for (long id : members) {
-        measure_index.push_back(where[size_t(id)]);
-        measure_density.push_back(Real(scene_.bodies[size_t(init_.body[size_t(id)])].material.density));
-      }
-      measure_offsets_.push_back(measure_index.size());
-    }
-    from_host<B>(measure_index, measure_index_);
-    from_host<B>(measure_density, measure_density_);
-    measure_buffer_.resize(measure_index.size() * 2 * D);
-    probe_buffer_.resize(probe_index.size() * (3 * D + 5));
+    this->locate_probes(where);
 
     // An initial displacement field deforms the body: F = I + grad u (seed 000
     // eq. 22 with u in place of v).
@@ -302,8 +229,9 @@ class TlsphSolver final : public Solver {
       parallel_for<B>(n, AddIdentityFunctor<D, Real>{v_.deformation_rate, v_.deformation_gradient});
     }
     results_.clear();
-    conditions_.apply_initial(v_, results_);              // velocity conditions at t = 0, clamps
-    conditions_.apply_fields(v_, 0.0, 0.0, 0, results_);  // time-dependent active potentials at t = 0
+    conditions_.apply_initial(v_, results_);  // velocity conditions at t = 0, clamps
+    conditions_.apply_fields(v_, v_.active_tension, 0.0, 0.0, 0,
+                             results_);  // time-dependent active potentials at t = 0
     results_.fetch();
     conditions_.collect(results_, v_);
 
@@ -342,7 +270,7 @@ class TlsphSolver final : public Solver {
     const Real half_dt = Real(0.5 * dt);
     results_.clear();
     run("stress", [&] {
-      conditions_.apply_fields(v_, time_ + 0.5 * dt, dt, steps_ + 1, results_);
+      conditions_.apply_fields(v_, v_.active_tension, time_ + 0.5 * dt, dt, steps_ + 1, results_);
       for (auto& k : bodies_) k->prepare_step(time_ + 0.5 * dt);
       for (auto& k : bodies_) k->stress(v_, half_dt);
     });
@@ -383,66 +311,15 @@ class TlsphSolver final : public Solver {
   }
 
   void save_state(StateArchive& a) override {
-    particles_.save(a);
-    a.put_value("solver/time", time_);
-    a.put_value("solver/dt_next", dt_next_);
-    a.put_value("solver/steps", steps_);
+    this->save_shared_state(a);
     a.put("solver/gravity_at_start", gravity_at_start_);
-    conditions_.save(a);
-    contact_.save(a);
     relaxation_.save(a);
   }
 
   void restore_state(const StateArchive& a) override {
-    // The particle order comes from the reference search; a checkpoint of
-    // another order (another backend's sort) cannot be restored field by field.
-    if (a.get<Index>("field/" + std::string(field::id), long(particles_.size())) !=
-        to_host<B>(particles_.template buffer<Index>(field::id)))
-      throw StateMismatch("the checkpoint's particle order differs from this run's (another backend?)");
-    particles_.restore(a);
-    time_ = a.get_value<double>("solver/time");
-    dt_next_ = a.get_value<double>("solver/dt_next");
-    steps_ = a.get_value<long>("solver/steps");
+    this->restore_shared_state(a);
     gravity_at_start_ = a.get<double>("solver/gravity_at_start", long(bodies_.size()));
-    conditions_.restore(a);
-    contact_.restore(a);
     relaxation_.restore(a);
-  }
-
-  void limit_next_dt(double dt_max) override { dt_next_ = std::min(dt_next_, dt_max); }
-  double time() const override { return time_; }
-  double next_dt() const override { return dt_next_; }
-  long steps() const override { return steps_; }
-  const StageTimers& timers() const override { return timers_; }
-  void reset_timers() override { timers_.reset(); }
-  SetupReport setup_report() const override { return report_; }
-
-  Snapshot snapshot() override {
-    compute_observables();
-    Snapshot s;
-    const Index n = particles_.size();
-    s.n = size_t(n);
-    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
-    s.id.assign(ids.begin(), ids.end());
-    s.body = to_host<B>(particles_.template buffer<int>(field::body));
-    s.constrained = to_host<B>(particles_.template buffer<unsigned char>(field::constrained));
-    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
-    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
-    const auto v = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::velocity));
-    s.position.assign(3 * s.n, 0.0);
-    s.displacement.assign(3 * s.n, 0.0);
-    s.velocity.assign(3 * s.n, 0.0);
-    for (size_t i = 0; i < s.n; ++i)
-      for (int a = 0; a < D; ++a) {
-        s.position[3 * i + a] = double(X[i].v[a]) + double(u[i].v[a]);
-        s.displacement[3 * i + a] = double(u[i].v[a]);
-        s.velocity[3 * i + a] = double(v[i].v[a]);
-      }
-    for (const auto& [name, source] : snapshot_fields_) {
-      const auto values = to_host<B>(particles_.template buffer<Real>(source));
-      s.fields.push_back({name, std::vector<double>(values.begin(), values.end())});
-    }
-    return s;
   }
 
   EnergySample energies() override {
@@ -458,9 +335,7 @@ class TlsphSolver final : public Solver {
       be.kinetic = s.kinetic;
       be.strain = s.strain;
       be.plastic = s.plastic;
-      be.external_work = conditions_.external_work(b);
-      be.boundary_work = conditions_.boundary_work(b);
-      be.contact_work = contact_.work(b);
+      this->add_shared_work(b, be);
       be.relaxation = relaxation_.dissipation(b);
       be.gravity_work = s.gravity - gravity_at_start_[b];
       be.damping = s.damping;
@@ -477,30 +352,6 @@ class TlsphSolver final : public Solver {
     e.hourglass_mean =
         n ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator}, 0.0, thrust::plus<double>{}) / n : 0.0;
     return e;
-  }
-
-  std::vector<BoundaryForceSample> boundary_forces() override {
-    std::vector<BoundaryForceSample> out = conditions_.forces();
-    for (const auto& f : contact_.forces()) out.push_back(f);
-    return out;
-  }
-
-  std::vector<MeasureSample> measures() override {
-    std::vector<MeasureSample> out(measure_offsets_.size() - 1);
-    if (out.empty()) return out;
-    parallel_for<B>(Index(measure_index_.size()),
-                    MeasureGatherFunctor<D, Real>{raw(measure_index_), v_.displacement, v_.acceleration, v_.volume,
-                                                  raw(measure_density_), raw(measure_buffer_)});
-    const auto h = to_host<B>(measure_buffer_);
-    for (size_t k = 0; k < out.size(); ++k) {
-      const double w = 1.0 / double(measure_offsets_[k + 1] - measure_offsets_[k]);
-      for (size_t m = measure_offsets_[k]; m < measure_offsets_[k + 1]; ++m)
-        for (int a = 0; a < D; ++a) {
-          out[k].displacement[a] += w * double(h[m * 2 * D + a]);
-          out[k].force[a] += double(h[m * 2 * D + D + a]);
-        }
-    }
-    return out;
   }
 
   std::vector<CrackTipSample> crack_tips() override {
@@ -527,91 +378,15 @@ class TlsphSolver final : public Solver {
     return out;
   }
 
-  // Each probe is the mean over its particles (one, or those within its radius).
-  std::vector<ProbeSample> probes() override {
-    std::vector<ProbeSample> out(probe_offsets_.size() - 1);
-    if (out.empty()) return out;
-    if (probes_need_stress_)
-      for (auto& k : bodies_) k->stress_observables(v_);
-    parallel_for<B>(Index(probe_index_.size()),
-                    ProbeGatherFunctor<D, Real>{raw(probe_index_), v_.reference_position, v_.displacement, v_.velocity,
-                                                v_.von_mises, v_.jacobian, v_.von_mises_strain, v_.plastic_strain,
-                                                v_.phase.s, raw(probe_buffer_)});
-    const auto h = to_host<B>(probe_buffer_);
-    for (size_t k = 0; k < out.size(); ++k) {
-      const double w = 1.0 / double(probe_offsets_[k + 1] - probe_offsets_[k]);
-      out[k].phase_field = 0;
-      for (size_t m = probe_offsets_[k]; m < probe_offsets_[k + 1]; ++m) {
-        const Real* o = h.data() + m * (3 * D + 5);
-        for (int a = 0; a < D; ++a) {
-          out[k].position[a] += w * double(o[a]);
-          out[k].displacement[a] += w * double(o[D + a]);
-          out[k].velocity[a] += w * double(o[2 * D + a]);
-        }
-        out[k].von_mises += w * double(o[3 * D]);
-        out[k].jacobian += w * double(o[3 * D + 1]);
-        out[k].von_mises_strain += w * double(o[3 * D + 2]);
-        out[k].plastic_strain += w * double(o[3 * D + 3]);
-        out[k].phase_field += w * double(o[3 * D + 4]);
-      }
-    }
-    return out;
-  }
-
  private:
-  const BodyProperties& props(size_t b) {
-    while (props_.size() < scene_.bodies.size())
-      props_.push_back(body_properties(scene_.bodies[props_.size()], scene_.solver, D));
-    return props_[b];
+  void update_observables() override { compute_observables(); }
+  void update_stress_observables() override {
+    for (auto& k : bodies_) k->stress_observables(v_);
   }
 
-  // One timed stage; a device error names it (backend_error.hpp), and in
-  // the checked mode (MFSD_CUDA_SYNC_CHECK=1) the stage ends with a
-  // synchronisation so that its kernels' faults are found in it.
-  template <class F>
-  void run(const char* name, F&& f) {
-    const int id = timers_.id(name);
-    clock_.start(id);
-    run_stage<B>(name, stage_names_, std::forward<F>(f));
-    clock_.stop(id, timers_);
-  }
-
-  void upload_initial_particles() {
+  // The fields of Holzapfel-Ogden and fracturing bodies from the scene.
+  void upload_model_fields() {
     const size_t n = init_.size();
-    std::vector<Index> id(n);
-    std::vector<Vec<D, double>> xd(n);
-    std::vector<Vec<D, Real>> x(n), v(n);
-    std::vector<Real> volume(n);
-    for (size_t i = 0; i < n; ++i) {
-      id[i] = Index(i);
-      for (int a = 0; a < D; ++a) {
-        xd[i].v[a] = init_.position[i][a];
-        x[i].v[a] = Real(init_.position[i][a]);
-        v[i].v[a] = Real(init_.velocity[i][a]);
-      }
-      volume[i] = Real(init_.volume[i]);
-    }
-    particles_.template add<Index>(field::id);
-    from_host<B>(id, particles_.template buffer<Index>(field::id));
-    particles_.template add<int>(field::body);
-    from_host<B>(init_.body, particles_.template buffer<int>(field::body));
-    particles_.template add<unsigned char>(field::constrained);
-    from_host<B>(init_.constrained, particles_.template buffer<unsigned char>(field::constrained));
-    particles_.template add<Vec<D, double>>(field::reference_position_double);
-    from_host<B>(xd, particles_.template buffer<Vec<D, double>>(field::reference_position_double));
-    particles_.template add<Vec<D, Real>>(field::reference_position);
-    from_host<B>(x, particles_.template buffer<Vec<D, Real>>(field::reference_position));
-    particles_.template add<Vec<D, Real>>(field::velocity);
-    from_host<B>(v, particles_.template buffer<Vec<D, Real>>(field::velocity));
-    particles_.template add<Vec<D, Real>>(field::displacement);
-    if (!init_.displacement.empty()) {
-      std::vector<Vec<D, Real>> u(n);
-      for (size_t i = 0; i < n; ++i)
-        for (int a = 0; a < D; ++a) u[i].v[a] = Real(init_.displacement[i][a]);
-      from_host<B>(u, particles_.template buffer<Vec<D, Real>>(field::displacement));
-    }
-    particles_.template add<Real>(field::volume);
-    from_host<B>(volume, particles_.template buffer<Real>(field::volume));
     if (!init_.fibre.empty()) {  // Holzapfel-Ogden bodies: f0, s0, k V_m; stiffening written by the stress stage
       std::vector<Vec<D, Real>> f(n), s(n);
       for (size_t i = 0; i < n; ++i)
@@ -831,51 +606,9 @@ class TlsphSolver final : public Solver {
     return std::max(props(b).c0, c);
   }
 
-  bool inside_bounds(const Vec<D, Real>& x) const {
-    for (int a = 0; a < D; ++a)
-      if (!(double(x.v[a]) >= scene_.bounds.min[a] && double(x.v[a]) <= scene_.bounds.max[a])) return false;
-    return true;
-  }
-
+  // Finite and inside the bounds: then |F^{-1}| of the deformed time step was not finite.
   [[noreturn]] void fail(Index i) {
-    auto one = [&](const char* name, auto tag) {
-      using T = decltype(tag);
-      return to_host<B>(particles_.template buffer<T>(name))[size_t(i)];
-    };
-    const Index id = one(field::id, Index{});
-    const int body = one(field::body, int{});
-    const auto X = one(field::reference_position, Vec<D, Real>{});
-    const auto u = one(field::displacement, Vec<D, Real>{});
-    const auto v = one(field::velocity, Vec<D, Real>{});
-    const auto a = one(field::acceleration, Vec<D, Real>{});
-    auto text = [](const Vec<D, Real>& w) {
-      std::string s = "(";
-      for (int k = 0; k < D; ++k) s += (k ? ", " : "") + std::to_string(double(w.v[k]));
-      return s + ")";
-    };
-    auto finite = [](const Vec<D, Real>& w) {
-      for (int k = 0; k < D; ++k)
-        if (!std::isfinite(double(w.v[k]))) return false;
-      return true;
-    };
-    std::string fieldname, detail;
-    if (!finite(a)) {
-      fieldname = "acceleration";
-      detail = "is not finite: " + text(a);
-    } else if (!finite(v)) {
-      fieldname = "velocity";
-      detail = "is not finite: " + text(v);
-    } else if (!finite(u)) {
-      fieldname = "displacement";
-      detail = "is not finite: " + text(u);
-    } else if (inside_bounds(X + u)) {  // then |F^{-1}| of the deformed time step was not finite
-      fieldname = "deformation_gradient";
-      detail = "has no finite inverse (|F^{-1}| is not finite) at " + text(X + u);
-    } else {
-      fieldname = "position";
-      detail = text(X + u) + " left the scene bounds";
-    }
-    throw NumericalFailure(steps_, time_, long(id), scene_.bodies[size_t(body)].name, fieldname, detail);
+    Base::fail(i, {"deformation_gradient", "has no finite inverse (|F^{-1}| is not finite)"});
   }
 
   void compute_hourglass_indicator() {
@@ -890,38 +623,14 @@ class TlsphSolver final : public Solver {
     compute_hourglass_indicator();
   }
 
-  Scene scene_;
-  InitialParticles init_;
-  SolverOptions options_;
-  std::vector<BodyProperties> props_;
-  ParticleSet<B> particles_;
   ReferenceNeighborList<B, D, Real> pairs_;
-  std::vector<BodyRange> ranges_;
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
-  TlsphConditions<B, D, Real> conditions_;
-  TlsphContact<B, D, Real> contact_;
   TlsphRelaxation<B, D, Real> relaxation_;
   std::vector<double> gravity_at_start_;  // per body: sum m g . u0
   bool has_loads_ = false;
   bool has_fracture_ = false;
-  std::vector<CrackSpec> cracks_;                                     // crack-tip outputs
-  std::vector<std::pair<std::string, const char*>> snapshot_fields_;  // output name, particle field
-  DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
-  std::vector<size_t> probe_offsets_{0};
-  bool probes_need_stress_ = false;  // von_mises or J requested by a probe
-  DeviceVector<B, Real> probe_buffer_;
-  DeviceVector<B, Index> measure_index_;  // all measure planes' particles, plane k at [offsets[k], offsets[k+1])
-  DeviceVector<B, Real> measure_density_;
-  std::vector<size_t> measure_offsets_{0};
-  DeviceVector<B, Real> measure_buffer_;
+  std::vector<CrackSpec> cracks_;  // crack-tip outputs
   TlsphViews<D, Real> v_{};
-  StageClock<B> clock_;
-  StageTimers timers_;
-  DeviceResults<B> results_;  // the step's sums until its one synchronisation
-  std::string stage_names_;   // the stages of a step, for deferred device errors
-  SetupReport report_;
-  double time_ = 0, dt_next_ = 0;
-  long steps_ = 0;
 };
 
 }  // namespace mfsd

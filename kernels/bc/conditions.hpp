@@ -18,10 +18,10 @@
 //              and its power R_i . v_mid with v_mid = (v_i^n + value) / 2.
 //              dt = 0 (the set-up at t = 0) sets the velocity only.
 #pragma once
+#include "kernels/bc/step_force.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/expr/interpreter.hpp"
 #include "kernels/expr/particle_variables.hpp"
-#include "kernels/tlsph/step_force.hpp"
 
 namespace mfsd {
 

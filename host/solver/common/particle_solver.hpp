@@ -1,0 +1,360 @@
+// What every method's solver shares, written once (design.md, "Inside
+// host/"): the particle set and its upload from the scene, the bodies'
+// ranges, the location of particles by their original id after reordering,
+// the conditions, walls, clamps and loads, contact, probes and measure
+// planes, the stage runner with its clocks, the numerical-failure report,
+// snapshots as named fields, and the Solver interface's bookkeeping (time,
+// steps, next dt, timers, set-up report, checkpoints of the shared parts).
+// A method (host/solver/<method>/) derives from it, adds its own fields and
+// stages, and registers its output fields in snapshot_fields_.
+// Include after the backend header.
+#pragma once
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/backend/device_results.hpp"
+#include "host/particles/field_names.hpp"
+#include "host/particles/particle_set.hpp"
+#include "host/scene/body_properties.hpp"
+#include "host/solver/common/conditions.hpp"
+#include "host/solver/common/contact.hpp"
+#include "host/solver/common/kinematics.hpp"
+#include "host/solver/numerical_failure.hpp"
+#include "host/solver/solver.hpp"
+#include "host/solver/stage_run.hpp"
+#include "kernels/probes/probe_gather.hpp"
+
+namespace mfsd {
+
+template <class B, int D, class Real>
+class ParticleSolver : public Solver {
+ public:
+  ParticleSolver(const Scene& scene, const InitialParticles& init, const SolverOptions& options)
+      : scene_(scene), init_(init), options_(options), particles_(Index(init.size())) {}
+
+  void limit_next_dt(double dt_max) override { dt_next_ = std::min(dt_next_, dt_max); }
+  double time() const override { return time_; }
+  double next_dt() const override { return dt_next_; }
+  long steps() const override { return steps_; }
+  const StageTimers& timers() const override { return timers_; }
+  void reset_timers() override { timers_.reset(); }
+  SetupReport setup_report() const override { return report_; }
+
+  // Kinematics and every registered field, in the current particle order.
+  Snapshot snapshot() override {
+    update_observables();
+    Snapshot s;
+    const Index n = particles_.size();
+    s.n = size_t(n);
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    s.id.assign(ids.begin(), ids.end());
+    s.body = to_host<B>(particles_.template buffer<int>(field::body));
+    s.constrained = to_host<B>(particles_.template buffer<unsigned char>(field::constrained));
+    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
+    const auto v = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::velocity));
+    s.position.assign(3 * s.n, 0.0);
+    s.displacement.assign(3 * s.n, 0.0);
+    s.velocity.assign(3 * s.n, 0.0);
+    for (size_t i = 0; i < s.n; ++i)
+      for (int a = 0; a < D; ++a) {
+        s.position[3 * i + a] = double(X[i].v[a]) + double(u[i].v[a]);
+        s.displacement[3 * i + a] = double(u[i].v[a]);
+        s.velocity[3 * i + a] = double(v[i].v[a]);
+      }
+    for (const auto& [name, source] : snapshot_fields_) {
+      const auto values = to_host<B>(particles_.template buffer<Real>(source));
+      s.fields.push_back({name, std::vector<double>(values.begin(), values.end())});
+    }
+    return s;
+  }
+
+  std::vector<BoundaryForceSample> boundary_forces() override {
+    std::vector<BoundaryForceSample> out = conditions_.forces();
+    for (const auto& f : contact_.forces()) out.push_back(f);
+    return out;
+  }
+
+  std::vector<MeasureSample> measures() override {
+    std::vector<MeasureSample> out(measure_offsets_.size() - 1);
+    if (out.empty()) return out;
+    const Kinematics<D, Real> k = kinematics();
+    parallel_for<B>(Index(measure_index_.size()),
+                    MeasureGatherFunctor<D, Real>{raw(measure_index_), k.displacement, k.acceleration, k.volume,
+                                                  raw(measure_density_), raw(measure_buffer_)});
+    const auto h = to_host<B>(measure_buffer_);
+    for (size_t k = 0; k < out.size(); ++k) {
+      const double w = 1.0 / double(measure_offsets_[k + 1] - measure_offsets_[k]);
+      for (size_t m = measure_offsets_[k]; m < measure_offsets_[k + 1]; ++m)
+        for (int a = 0; a < D; ++a) {
+          out[k].displacement[a] += w * double(h[m * 2 * D + a]);
+          out[k].force[a] += double(h[m * 2 * D + D + a]);
+        }
+    }
+    return out;
+  }
+
+  // Each probe is the mean over its particles (one, or those within its
+  // radius); the stress measures come from the registered fields of their
+  // names (zero, or s = 1, where a method or body has none).
+  std::vector<ProbeSample> probes() override {
+    std::vector<ProbeSample> out(probe_offsets_.size() - 1);
+    if (out.empty()) return out;
+    if (probes_need_stress_) update_stress_observables();
+    const Kinematics<D, Real> k = kinematics();
+    parallel_for<B>(
+        Index(probe_index_.size()),
+        ProbeGatherFunctor<D, Real>{raw(probe_index_), k.reference_position, k.displacement, k.velocity,
+                                    optional_real(field::von_mises), optional_real(field::jacobian),
+                                    optional_real(field::von_mises_strain), optional_real(field::plastic_strain),
+                                    optional_real(field::phase_field), raw(probe_buffer_)});
+    const auto h = to_host<B>(probe_buffer_);
+    for (size_t k = 0; k < out.size(); ++k) {
+      const double w = 1.0 / double(probe_offsets_[k + 1] - probe_offsets_[k]);
+      out[k].phase_field = 0;
+      for (size_t m = probe_offsets_[k]; m < probe_offsets_[k + 1]; ++m) {
+        const Real* o = h.data() + m * kProbeValues<D>;
+        for (int a = 0; a < D; ++a) {
+          out[k].position[a] += w * double(o[a]);
+          out[k].displacement[a] += w * double(o[D + a]);
+          out[k].velocity[a] += w * double(o[2 * D + a]);
+        }
+        out[k].von_mises += w * double(o[3 * D]);
+        out[k].jacobian += w * double(o[3 * D + 1]);
+        out[k].von_mises_strain += w * double(o[3 * D + 2]);
+        out[k].plastic_strain += w * double(o[3 * D + 3]);
+        out[k].phase_field += w * double(o[3 * D + 4]);
+      }
+    }
+    return out;
+  }
+
+ protected:
+  // Output fields of snapshots: refresh what is computed only for output.
+  virtual void update_observables() {}
+  // The stress measures that probes read (von_mises, J, ...), when asked for.
+  virtual void update_stress_observables() {}
+
+  const BodyProperties& props(size_t b) {
+    while (props_.size() < scene_.bodies.size())
+      props_.push_back(body_properties(scene_.bodies[props_.size()], scene_.solver, D));
+    return props_[b];
+  }
+
+  Real* optional_real(const char* name) { return particles_.has(name) ? particles_.template get<Real>(name) : nullptr; }
+
+  Kinematics<D, Real> kinematics() {
+    return Kinematics<D, Real>{particles_.template get<Vec<D, Real>>(field::reference_position),
+                               particles_.template get<Vec<D, Real>>(field::displacement),
+                               particles_.template get<Vec<D, Real>>(field::velocity),
+                               particles_.template get<Vec<D, Real>>(field::acceleration),
+                               particles_.template get<Real>(field::volume)};
+  }
+
+  // One timed stage; a device error names it (backend_error.hpp), and in
+  // the checked mode (MFSD_CUDA_SYNC_CHECK=1) the stage ends with a
+  // synchronisation so that its kernels' faults are found in it.
+  template <class F>
+  void run(const char* name, F&& f) {
+    const int id = timers_.id(name);
+    clock_.start(id);
+    run_stage<B>(name, stage_names_, std::forward<F>(f));
+    clock_.stop(id, timers_);
+  }
+
+  // Registers a stage for the timers and the device-error messages.
+  void declare_stage(const char* name) {
+    timers_.id(name);
+    stage_names_ += (stage_names_.empty() ? "" : ", ") + std::string(name);
+  }
+
+  // The fields every method has, from the scene's initial particles: id,
+  // body, constrained, X (also in double for the set-up's searches), u, v
+  // and V0. Index ranges of the bodies follow.
+  void upload_kinematics() {
+    const size_t n = init_.size();
+    std::vector<Index> id(n);
+    std::vector<Vec<D, double>> xd(n);
+    std::vector<Vec<D, Real>> x(n), v(n);
+    std::vector<Real> volume(n);
+    for (size_t i = 0; i < n; ++i) {
+      id[i] = Index(i);
+      for (int a = 0; a < D; ++a) {
+        xd[i].v[a] = init_.position[i][a];
+        x[i].v[a] = Real(init_.position[i][a]);
+        v[i].v[a] = Real(init_.velocity[i][a]);
+      }
+      volume[i] = Real(init_.volume[i]);
+    }
+    particles_.template add<Index>(field::id);
+    from_host<B>(id, particles_.template buffer<Index>(field::id));
+    particles_.template add<int>(field::body);
+    from_host<B>(init_.body, particles_.template buffer<int>(field::body));
+    particles_.template add<unsigned char>(field::constrained);
+    from_host<B>(init_.constrained, particles_.template buffer<unsigned char>(field::constrained));
+    particles_.template add<Vec<D, double>>(field::reference_position_double);
+    from_host<B>(xd, particles_.template buffer<Vec<D, double>>(field::reference_position_double));
+    particles_.template add<Vec<D, Real>>(field::reference_position);
+    from_host<B>(x, particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    particles_.template add<Vec<D, Real>>(field::velocity);
+    from_host<B>(v, particles_.template buffer<Vec<D, Real>>(field::velocity));
+    particles_.template add<Vec<D, Real>>(field::displacement);
+    if (!init_.displacement.empty()) {
+      std::vector<Vec<D, Real>> u(n);
+      for (size_t i = 0; i < n; ++i)
+        for (int a = 0; a < D; ++a) u[i].v[a] = Real(init_.displacement[i][a]);
+      from_host<B>(u, particles_.template buffer<Vec<D, Real>>(field::displacement));
+    }
+    particles_.template add<Real>(field::volume);
+    from_host<B>(volume, particles_.template buffer<Real>(field::volume));
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      ranges_.push_back(BodyRange{Index(init_.body_range[b].begin), Index(init_.body_range[b].end)});
+  }
+
+  // where[id] = the current index of the particle with original id `id`.
+  std::vector<Index> locate() {
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    std::vector<Index> where(ids.size());
+    for (size_t k = 0; k < ids.size(); ++k) where[size_t(ids[k])] = Index(k);
+    return where;
+  }
+
+  // The particles of the probes and measure planes, by their current index.
+  void locate_probes(const std::vector<Index>& where) {
+    for (const auto& p : scene_.probes)
+      for (const auto& f : p.fields)
+        probes_need_stress_ =
+            probes_need_stress_ || f == "von_mises" || f == "J" || f == "von_mises_strain" || f == "plastic_strain";
+    std::vector<Index> probe_index;
+    probe_offsets_.assign(1, 0);
+    for (const auto& members : init_.probe_particles) {
+      for (long id : members) probe_index.push_back(where[size_t(id)]);
+      probe_offsets_.push_back(probe_index.size());
+    }
+    from_host<B>(probe_index, probe_index_);
+    std::vector<Index> measure_index;
+    std::vector<Real> measure_density;
+    measure_offsets_.assign(1, 0);
+    for (const auto& members : init_.measure_particles) {
+      for (long id : members) {
+        measure_index.push_back(where[size_t(id)]);
+        measure_density.push_back(Real(scene_.bodies[size_t(init_.body[size_t(id)])].material.density));
+      }
+      measure_offsets_.push_back(measure_index.size());
+    }
+    from_host<B>(measure_index, measure_index_);
+    from_host<B>(measure_density, measure_density_);
+    measure_buffer_.resize(measure_index.size() * 2 * D);
+    probe_buffer_.resize(probe_index.size() * kProbeValues<D>);
+  }
+
+  // The work of conditions, walls, clamps and contact on body b.
+  void add_shared_work(size_t b, BodyEnergy& e) const {
+    e.external_work = conditions_.external_work(b);
+    e.boundary_work = conditions_.boundary_work(b);
+    e.contact_work = contact_.work(b);
+  }
+
+  void save_shared_state(StateArchive& a) {
+    particles_.save(a);
+    a.put_value("solver/time", time_);
+    a.put_value("solver/dt_next", dt_next_);
+    a.put_value("solver/steps", steps_);
+    conditions_.save(a);
+    contact_.save(a);
+  }
+
+  void restore_shared_state(const StateArchive& a) {
+    // The particle order comes from the search; a checkpoint of another
+    // order (another backend's sort) cannot be restored field by field.
+    if (a.get<Index>("field/" + std::string(field::id), long(particles_.size())) !=
+        to_host<B>(particles_.template buffer<Index>(field::id)))
+      throw StateMismatch("the checkpoint's particle order differs from this run's (another backend?)");
+    particles_.restore(a);
+    time_ = a.get_value<double>("solver/time");
+    dt_next_ = a.get_value<double>("solver/dt_next");
+    steps_ = a.get_value<long>("solver/steps");
+    conditions_.restore(a);
+    contact_.restore(a);
+  }
+
+  bool inside_bounds(const Vec<D, Real>& x) const {
+    for (int a = 0; a < D; ++a)
+      if (!(double(x.v[a]) >= scene_.bounds.min[a] && double(x.v[a]) <= scene_.bounds.max[a])) return false;
+    return true;
+  }
+
+  // Stops the run at particle i, naming the first of its fields that is not
+  // finite, or its escape from the scene bounds; `inside` (field, detail)
+  // names the method's own cause when the particle is finite and inside.
+  [[noreturn]] void fail(Index i, const std::pair<std::string, std::string>& inside) {
+    auto one = [&](const char* name, auto tag) {
+      using T = decltype(tag);
+      return to_host<B>(particles_.template buffer<T>(name))[size_t(i)];
+    };
+    const Index id = one(field::id, Index{});
+    const int body = one(field::body, int{});
+    const auto X = one(field::reference_position, Vec<D, Real>{});
+    const auto u = one(field::displacement, Vec<D, Real>{});
+    const auto v = one(field::velocity, Vec<D, Real>{});
+    const auto a = one(field::acceleration, Vec<D, Real>{});
+    auto finite = [](const Vec<D, Real>& w) {
+      for (int k = 0; k < D; ++k)
+        if (!std::isfinite(double(w.v[k]))) return false;
+      return true;
+    };
+    std::string fieldname, detail;
+    if (!finite(a)) {
+      fieldname = "acceleration";
+      detail = "is not finite: " + vector_text(a);
+    } else if (!finite(v)) {
+      fieldname = "velocity";
+      detail = "is not finite: " + vector_text(v);
+    } else if (!finite(u)) {
+      fieldname = "displacement";
+      detail = "is not finite: " + vector_text(u);
+    } else if (inside_bounds(X + u)) {
+      fieldname = inside.first;
+      detail = inside.second + " at " + vector_text(X + u);
+    } else {
+      fieldname = "position";
+      detail = vector_text(X + u) + " left the scene bounds";
+    }
+    throw NumericalFailure(steps_, time_, long(id), scene_.bodies[size_t(body)].name, fieldname, detail);
+  }
+
+  static std::string vector_text(const Vec<D, Real>& w) {
+    std::string s = "(";
+    for (int k = 0; k < D; ++k) s += (k ? ", " : "") + std::to_string(double(w.v[k]));
+    return s + ")";
+  }
+
+  Scene scene_;
+  InitialParticles init_;
+  SolverOptions options_;
+  std::vector<BodyProperties> props_;
+  ParticleSet<B> particles_;
+  std::vector<BodyRange> ranges_;
+  Conditions<B, D, Real> conditions_;
+  Contact<B, D, Real> contact_;
+  std::vector<std::pair<std::string, const char*>> snapshot_fields_;  // output name, particle field
+  DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
+  std::vector<size_t> probe_offsets_{0};
+  bool probes_need_stress_ = false;  // von_mises, J, ... requested by a probe
+  DeviceVector<B, Real> probe_buffer_;
+  DeviceVector<B, Index> measure_index_;  // all measure planes' particles, plane k at [offsets[k], offsets[k+1])
+  DeviceVector<B, Real> measure_density_;
+  std::vector<size_t> measure_offsets_{0};
+  DeviceVector<B, Real> measure_buffer_;
+  StageClock<B> clock_;
+  StageTimers timers_;
+  DeviceResults<B> results_;  // the step's sums until its one synchronisation
+  std::string stage_names_;   // the stages of a step, for deferred device errors
+  SetupReport report_;
+  double time_ = 0, dt_next_ = 0;
+  long steps_ = 0;
+};
+
+}  // namespace mfsd
