@@ -40,4 +40,13 @@ inline constexpr const char* tensile_energy = "tensile_energy";        // psi_pl
 inline constexpr const char* fracture_released = "fracture_released";  // released energy per V0
 inline constexpr const char* phase_field_lower = "phase_field_lower";  // restrict_phase_field bound
 inline constexpr const char* phase_field_next = "phase_field_next";    // s_{n+1} within a step
+// ULSPH (host/solver/ulsph/; kernels/ulsph/): the state and the stage fields.
+inline constexpr const char* mass = "mass";                                      // m = rho0 V0
+inline constexpr const char* density = "density";                                // rho
+inline constexpr const char* pressure = "pressure";                              // p = K (rho/rho0 - 1)
+inline constexpr const char* velocity_gradient = "velocity_gradient";            // L_ab = dv_a/dx_b
+inline constexpr const char* hourglass_acceleration = "hourglass_acceleration";  // GNOG a_h, accumulated
+inline constexpr const char* current_position = "current_position";              // x = X + u for the search
+inline constexpr const char* plastic_scale = "plastic_scale";                    // kappa of J2 bodies
+inline constexpr const char* failed = "failed";                                  // 1 once a particle failed
 }  // namespace mfsd::field

@@ -85,9 +85,13 @@ const char* to_string(MaterialModel m) {
       return "j2_mandel";
     case MaterialModel::holzapfel_ogden:
       return "holzapfel_ogden";
+    case MaterialModel::linear_elastic:
+      return "linear_elastic";
   }
   return "?";
 }
+const char* to_string(Method m) { return m == Method::ulsph ? "ulsph" : "tlsph"; }
+
 const char* to_string(HourglassControl h) {
   switch (h) {
     case HourglassControl::none:
@@ -96,6 +100,10 @@ const char* to_string(HourglassControl h) {
       return "laplacian";
     case HourglassControl::genog:
       return "genog";
+    case HourglassControl::gnog:
+      return "gnog";
+    case HourglassControl::gnog_amc:
+      return "gnog_amc";
   }
   return "?";
 }

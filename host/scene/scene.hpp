@@ -8,13 +8,26 @@
 #include <vector>
 
 #include "host/scene/shape.hpp"
-#include "kernels/tlsph/hourglass.hpp"
 
 namespace mfsd {
 
-enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel, holzapfel_ogden };
+// linear_elastic: the hypo-elastic solid of ULSPH (seed 002 eq. 6-8: linear
+// equation of state, Jaumann rate of the shear stress); the others are
+// hyperelastic (TLSPH). j2 is J2 plasticity in either method: multiplicative
+// on neo-Hookean elasticity in TLSPH (seed 000), hypo-elastic with the radial
+// return in ULSPH (seed 002 eq. 9-12).
+enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel, holzapfel_ogden, linear_elastic };
 enum class HardeningLaw { linear, saturation, herschel_bulkley };
-enum class HourglassControl { none, laplacian, genog };
+// The solution method of a scene (solver.method).
+enum class Method { tlsph, ulsph };
+// Hourglass control: tlsph none | laplacian | genog, ulsph none | gnog | gnog_amc.
+enum class HourglassControl { none, laplacian, genog, gnog, gnog_amc };
+// GENOG correction weight (solver.genog.limiter; kernels/tlsph/hourglass.hpp):
+// the paper's phi = alpha d beta gamma (seed 000 eq. 32-33) or the authors'
+// later capped form.
+enum class GenogLimiterChoice { paper, capped };
+// How the GENOG correction enters a pair's shear term (solver.genog.form).
+enum class GenogFormChoice { vector, dyadic };
 enum class SoundSpeed { bulk, p_wave };       // sqrt(K/rho0) | sqrt((K + 4G/3)/rho0)
 enum class DampingForm { isotropic, split };  // one wave speed | c0 normal, c_s shear
 enum class Precision { single_precision, double_precision };
@@ -56,6 +69,7 @@ struct HolzapfelOgdenSpec {
 struct MaterialSpec {
   MaterialModel model = MaterialModel::neo_hookean;
   double density = 0;
+  double failure_pressure = 0;  // ULSPH tension failure threshold (Pa; 0 = none; seed 002 section 5.9)
   double youngs_modulus = 0;
   double poisson_ratio = 0;
   // j2 (neo-Hookean elasticity on b_e, seed 000 section 3.2):
@@ -184,15 +198,25 @@ struct RelaxationSpec {
   double t_start = 0, t_end = 1e300;  // relaxes the steps that start in [t_start, t_end)
 };
 
+// ULSPH settings (solver.ulsph; seed 002 section 3.3, formulations.md section 3).
+struct UlsphSpec {
+  bool dual_time_stepping = true;  // advection steps of acoustic sub-steps | one criterion (every step rebuilds)
+  double advection_cfl = 0.2;      // dt_adv = advection_cfl h / max(U_ref, |v|max)
+  double reference_speed = 0;      // U_ref, m/s
+  double xi = -1;                  // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
+};
+
 struct SolverSpec {
+  Method method = Method::tlsph;
+  UlsphSpec ulsph;
   HourglassControl hourglass = HourglassControl::genog;
   double h_over_dp = 1.15;
   double cfl = 0.6;
   double end_time = 0;
   double zeta = 1.07;
   double genog_alpha = 8.0;
-  GenogLimiter genog_limiter = GenogLimiter::paper;
-  GenogForm genog_form = GenogForm::vector;
+  GenogLimiterChoice genog_limiter = GenogLimiterChoice::paper;
+  GenogFormChoice genog_form = GenogFormChoice::vector;
   bool correction_in_force = true;
   double damping_factor = 1.0;
   DampingForm damping_form = DampingForm::isotropic;
@@ -262,6 +286,7 @@ std::vector<CrackSpec> crack_specs(const Scene& scene);
 
 const char* to_string(MaterialModel m);
 const char* to_string(HourglassControl h);
+const char* to_string(Method m);
 const char* to_string(Precision p);
 
 }  // namespace mfsd

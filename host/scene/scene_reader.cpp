@@ -124,9 +124,10 @@ void read_holzapfel_ogden(JsonNode& m, MaterialSpec& spec, int dim) {
 
 MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std::string>& warnings) {
   MaterialSpec spec;
-  const std::string model =
-      m.choice("model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel", "holzapfel_ogden"});
+  const std::string model = m.choice(
+      "model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel", "holzapfel_ogden", "linear_elastic"});
   spec.model = model == "neo_hookean"       ? MaterialModel::neo_hookean
+               : model == "linear_elastic"  ? MaterialModel::linear_elastic
                : model == "j2"              ? MaterialModel::j2
                : model == "j2_mandel"       ? MaterialModel::j2_mandel
                : model == "holzapfel_ogden" ? MaterialModel::holzapfel_ogden
@@ -140,6 +141,8 @@ MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std:
   spec.youngs_modulus = m.number("youngs_modulus", Range::positive());
   spec.poisson_ratio = m.number("poisson_ratio", Range{-1.0, 0.5, true, true, "a number in (-1, 0.5)"});
   if (auto f = m.optional_object("fracture")) spec.fracture = read_fracture(*f, spec, spacing, dim, warnings);
+  // Tension failure of ULSPH bodies (seed 002 section 5.9): -p above it fails a particle.
+  spec.failure_pressure = m.number("failure_pressure", 0.0, Range::non_negative());
   if (spec.plastic()) {
     spec.yield_stress = m.number("yield_stress", Range::positive());
     spec.hardening_modulus = m.number("hardening_modulus", 0.0, Range::non_negative());
@@ -192,15 +195,70 @@ void check_body_properties(const BodySpec& body, const SolverSpec& solver, int d
     }
 }
 
+// Each method's materials: ULSPH has the hypo-elastic solid and J2 with
+// linear hardening (seed 002), TLSPH the hyperelastic models and its J2
+// family; neither takes the other's.
+void check_method_material(const BodySpec& body, const SolverSpec& solver, const std::string& path) {
+  const MaterialSpec& m = body.material;
+  if (solver.method == Method::ulsph) {
+    const bool ok = m.model == MaterialModel::linear_elastic ||
+                    (m.model == MaterialModel::j2 && m.hardening == HardeningLaw::linear);
+    if (!ok)
+      throw SceneError(path + "/model", std::string("\"") + to_string(m.model) + "\" with solver.method \"ulsph\"",
+                       "\"linear_elastic\" or \"j2\" with linear hardening (seed 002)");
+    if (m.fracture.enabled)
+      throw SceneError(path + "/fracture", "phase-field fracture with solver.method \"ulsph\"",
+                       "solver.method \"tlsph\" (ULSPH bodies fail by tension: material.failure_pressure)");
+  } else {
+    if (m.model == MaterialModel::linear_elastic)
+      throw SceneError(path + "/model", "\"linear_elastic\" with solver.method \"tlsph\"",
+                       "a hyperelastic model (neo_hookean, saint_venant_kirchhoff, ...), or solver.method \"ulsph\"");
+    if (m.failure_pressure > 0)
+      throw SceneError(path + "/failure_pressure", "tension failure with solver.method \"tlsph\"",
+                       "solver.method \"ulsph\" (TLSPH bodies break by phase-field fracture)");
+  }
+}
+
+// Keys of the TLSPH pipeline that have no meaning for ULSPH (refused there).
+const char* const kTlsphOnlyKeys[] = {
+    "kernel_correction_in_force", "correction_floor", "deformed_time_step", "zeta", "genog", "damping", "relaxation"};
+
 SolverSpec read_solver(JsonNode s, int dim) {
   SolverSpec spec;
-  s.choice("formulation", {"tlsph"}, "tlsph");
-  const std::string hg = s.choice("hourglass", {"none", "laplacian", "genog"}, "genog");
-  spec.hourglass = hg == "none" ? HourglassControl::none
-                                : (hg == "laplacian" ? HourglassControl::laplacian : HourglassControl::genog);
+  // solver.method; solver.formulation is its earlier name.
+  if (s.has("method") && s.has("formulation"))
+    throw SceneError(s.key_path("formulation"), "both method and formulation", "solver.method only");
+  const std::string method = s.has("formulation") ? s.choice("formulation", {"tlsph", "ulsph"}, "tlsph")
+                                                  : s.choice("method", {"tlsph", "ulsph"}, "tlsph");
+  spec.method = method == "ulsph" ? Method::ulsph : Method::tlsph;
+  if (spec.method == Method::ulsph) {
+    for (const char* key : kTlsphOnlyKeys)
+      if (s.has(key))
+        throw SceneError(s.key_path(key), "a setting of method tlsph",
+                         "no such key with solver.method \"ulsph\" (docs/scene-reference.md lists each method's keys)");
+    const std::string hg = s.choice("hourglass", {"none", "gnog", "gnog_amc"}, "gnog");
+    spec.hourglass =
+        hg == "none" ? HourglassControl::none : (hg == "gnog" ? HourglassControl::gnog : HourglassControl::gnog_amc);
+    spec.damping_factor = 0;  // ULSPH dissipates through its Riemann solver (seed 002 eq. 15-17)
+    JsonNode u = s.object_or_empty("ulsph");
+    spec.ulsph.dual_time_stepping = u.choice("time_stepping", {"dual", "single"}, "dual") == "dual";
+    spec.ulsph.advection_cfl = u.number("advection_cfl", 0.2, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+    spec.ulsph.reference_speed = u.number("reference_speed", 0.0, Range::non_negative());
+    if (u.has("xi")) spec.ulsph.xi = u.number("xi", Range::positive());
+    u.finish();
+  } else {
+    if (s.has("ulsph"))
+      throw SceneError(s.key_path("ulsph"), "ULSPH settings with method tlsph",
+                       "solver.method \"ulsph\", or no solver.ulsph");
+    const std::string hg = s.choice("hourglass", {"none", "laplacian", "genog"}, "genog");
+    spec.hourglass = hg == "none" ? HourglassControl::none
+                                  : (hg == "laplacian" ? HourglassControl::laplacian : HourglassControl::genog);
+  }
   spec.end_time = s.number("end_time", Range::positive());
   spec.h_over_dp = s.number("h_over_dp", 1.15, Range{1.0, 2.0, false, false, "a number in [1, 2]"});
-  spec.cfl = s.number("cfl", 0.6, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+  // The acoustic CFL number in both methods: h/(c0 + |v|max) (seed 000 eq. 38, seed 002 eq. 29).
+  spec.cfl =
+      s.number("cfl", spec.method == Method::ulsph ? 0.4 : 0.6, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
   spec.precision = s.choice("precision", {"double", "float"}, "double") == "float" ? Precision::single_precision
                                                                                    : Precision::double_precision;
   spec.sound_speed =
@@ -220,10 +278,10 @@ SolverSpec read_solver(JsonNode s, int dim) {
   {
     JsonNode g = s.object_or_empty("genog");
     spec.genog_alpha = g.number("alpha", 8.0, Range::positive());
-    spec.genog_limiter =
-        g.choice("limiter", {"paper", "capped"}, "paper") == "paper" ? GenogLimiter::paper : GenogLimiter::capped;
-    spec.genog_form =
-        g.choice("form", {"vector", "dyadic"}, "vector") == "vector" ? GenogForm::vector : GenogForm::dyadic;
+    spec.genog_limiter = g.choice("limiter", {"paper", "capped"}, "paper") == "paper" ? GenogLimiterChoice::paper
+                                                                                      : GenogLimiterChoice::capped;
+    spec.genog_form = g.choice("form", {"vector", "dyadic"}, "vector") == "vector" ? GenogFormChoice::vector
+                                                                                   : GenogFormChoice::dyadic;
     g.finish();
   }
   {
@@ -423,7 +481,10 @@ void apply_override(Json& doc, const std::string& assignment) {
       node = next;
     } else if (node->is_object()) {
       if (last) {
-        (*node)[p] = value;
+        if (value.is_null())
+          node->erase(p);  // --set key=null removes the key: its default applies
+        else
+          (*node)[p] = value;
       } else {
         if (!node->contains(p)) (*node)[p] = Json::object();
         node = &(*node)[p];
@@ -498,6 +559,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"), body.spacing, dim, scene.warnings);
     if (body.material.fracture.enabled) check_file_name(node.key_path("name"), body.name, "crack_<name>.csv");
+    check_method_material(body, scene.solver, node.key_path("material"));
     if (body.material.fracture.enabled && scene.solver.hourglass != HourglassControl::none)
       throw SceneError(
           "/solver/hourglass",

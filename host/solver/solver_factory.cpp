@@ -7,6 +7,8 @@ namespace mfsd {
 
 #define MFSD_DECLARE(backend, dim, real)                                                                \
   std::unique_ptr<Solver> make_tlsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
+                                                                 const SolverOptions&);                 \
+  std::unique_ptr<Solver> make_ulsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
                                                                  const SolverOptions&);
 MFSD_DECLARE(cpu, 2, float)
 MFSD_DECLARE(cpu, 2, double)
@@ -25,6 +27,10 @@ std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& 
   const int d = scene.dimension;
   if (o.backend == "cpu") {
     if (o.threads > 0) omp_set_num_threads(o.threads);
+    if (scene.solver.method == Method::ulsph) {
+      if (d == 2) return single ? make_ulsph_cpu_2d_float(scene, p, o) : make_ulsph_cpu_2d_double(scene, p, o);
+      return single ? make_ulsph_cpu_3d_float(scene, p, o) : make_ulsph_cpu_3d_double(scene, p, o);
+    }
     if (d == 2) return single ? make_tlsph_cpu_2d_float(scene, p, o) : make_tlsph_cpu_2d_double(scene, p, o);
     return single ? make_tlsph_cpu_3d_float(scene, p, o) : make_tlsph_cpu_3d_double(scene, p, o);
   }
@@ -33,6 +39,10 @@ std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& 
     if (cuda_device_count() <= 0)
       throw UsageError("--backend cuda: this machine has no usable CUDA device (" + cuda_device_name() +
                        "); use --backend cpu");
+    if (scene.solver.method == Method::ulsph) {
+      if (d == 2) return single ? make_ulsph_cuda_2d_float(scene, p, o) : make_ulsph_cuda_2d_double(scene, p, o);
+      return single ? make_ulsph_cuda_3d_float(scene, p, o) : make_ulsph_cuda_3d_double(scene, p, o);
+    }
     if (d == 2) return single ? make_tlsph_cuda_2d_float(scene, p, o) : make_tlsph_cuda_2d_double(scene, p, o);
     return single ? make_tlsph_cuda_3d_float(scene, p, o) : make_tlsph_cuda_3d_double(scene, p, o);
 #else

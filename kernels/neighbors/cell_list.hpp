@@ -44,7 +44,7 @@ struct CellKeyFunctor {
   std::int64_t* key;
 
   MFSD_HD void operator()(Index i) const {
-    const CellGrid<D>& grid = grids[body[i]];
+    const CellGrid<D, P>& grid = grids[body[i]];
     int c[D];
     for (int a = 0; a < D; ++a) c[a] = grid.coordinate(a, position[i].v[a]);
     key[i] = grid.first_key + grid.linear(c);

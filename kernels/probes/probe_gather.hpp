@@ -16,7 +16,7 @@ struct ProbeGatherFunctor {
   const Vec<D, Real>* reference_position;
   const Vec<D, Real>* displacement;
   const Vec<D, Real>* velocity;
-  const Real* von_mises;
+  const Real* von_mises;         // the stress measures: null where a method has none
   const Real* jacobian;
   const Real* von_mises_strain;
   const Real* plastic_strain;  // null without plastic bodies
@@ -30,9 +30,9 @@ struct ProbeGatherFunctor {
       o[D + a] = displacement[i].v[a];
       o[2 * D + a] = velocity[i].v[a];
     }
-    o[3 * D] = von_mises[i];
-    o[3 * D + 1] = jacobian[i];
-    o[3 * D + 2] = von_mises_strain[i];
+    o[3 * D] = von_mises ? von_mises[i] : Real(0);
+    o[3 * D + 1] = jacobian ? jacobian[i] : Real(1);
+    o[3 * D + 2] = von_mises_strain ? von_mises_strain[i] : Real(0);
     o[3 * D + 3] = plastic_strain ? plastic_strain[i] : Real(0);
     o[3 * D + 4] = phase_field ? phase_field[i] : Real(1);
   }

@@ -5,7 +5,7 @@
 #pragma once
 #include "kernels/core/mat.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
-#include "kernels/tlsph/step_statistics.hpp"
+#include "kernels/core/step_statistics.hpp"
 
 namespace mfsd {
 

@@ -45,7 +45,7 @@
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
 #include "kernels/tlsph/hourglass_indicator.hpp"
-#include "kernels/tlsph/step_statistics.hpp"
+#include "kernels/core/step_statistics.hpp"
 
 namespace mfsd {
 
@@ -120,7 +120,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     std::vector<BodySearch> search;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) search.push_back(BodySearch{ranges_[b], props(b).h});
     const bool paper_limiter =
-        scene_.solver.hourglass == HourglassControl::genog && scene_.solver.genog_limiter == GenogLimiter::paper;
+        scene_.solver.hourglass == HourglassControl::genog && scene_.solver.genog_limiter == GenogLimiterChoice::paper;
     std::vector<Notch<D>> notches;  // pairs they cut are left out (seed 001 section 3.3.1)
     for (size_t b = 0; b < scene_.bodies.size(); ++b)
       for (const auto& points : scene_.bodies[b].material.fracture.notches) {
@@ -467,8 +467,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     k.gravity = s.gravity;
     k.zeta = s.zeta;
     k.correction_in_force = s.correction_in_force;
-    k.genog_limiter = s.genog_limiter;
-    k.genog_form = s.genog_form;
+    k.genog_limiter = s.genog_limiter == GenogLimiterChoice::paper ? GenogLimiter::paper : GenogLimiter::capped;
+    k.genog_form = s.genog_form == GenogFormChoice::vector ? GenogForm::vector : GenogForm::dyadic;
     k.genog_alpha = s.genog_alpha;
     // tau_d = (chi/2) db/dt, chi = rho0 c h / 2 (seed 003 eq. 23): coefficient of E_dot is rho0 c h / 2.
     const double base = s.damping_factor * spec.material.density * p.h * 0.5;
@@ -534,6 +534,9 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
           return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassLaplacian>>(m, k);
       case HourglassControl::genog:
         return std::make_unique<BodyKernelsImpl<B, D, Real, Material, HourglassGenog>>(m, k);
+      case HourglassControl::gnog:
+      case HourglassControl::gnog_amc:
+        break;  // ULSPH variants (the scene reader keeps them from tlsph)
     }
     throw std::logic_error("unknown hourglass variant");
   }

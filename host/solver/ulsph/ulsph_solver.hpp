@@ -1,0 +1,473 @@
+// Updated-Lagrangian SPH solver with generalized non-hourglass control
+// (seed 002; formulations.md section 3) for one backend, precision and
+// dimension. One call of step() is one acoustic step:
+//   neighbors    at the start of an advection step: x = X + u, cell sort,
+//                CSR with the current pair data (V = m/rho), B   (eq. 20-21)
+//   half_step    rho and u to the half step                     (eq. 30, 14)
+//   stress       p (linear EOS, tension failure), L, Jaumann tau with the
+//                J2 return and kappa                             (eq. 6-12)
+//   force        a = pressure + Riemann + shear + GNOG + g, v += dt a
+//                                                            (eq. 15-18, 27-29, 31)
+//   contact, loads, boundary   the shared services (host/solver/common/)
+//   advance      rho and u through the second half at the new v (eq. 32),
+//                reduced to the step's maxima and health check
+//   time_step    the step's one synchronisation; dual-criteria time step:
+//                dt_adv = C_adv h / max(U_ref, |v|max), dt_ac = CFL h / (c0 + |v|max)
+//                (eq. 28-29), acoustic steps until dt_adv is covered
+// Bodies are ranges of one particle set; pairs join particles of one body
+// only, bodies meet by contact. Positions are displacements from the initial
+// positions (kinematics.hpp). Include after the backend header.
+#pragma once
+#include <thrust/count.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/neighbors/cell_list_search.hpp"
+#include "host/solver/common/particle_solver.hpp"
+#include "kernels/core/step_statistics.hpp"
+#include "kernels/neighbors/bounding_box.hpp"
+#include "kernels/ulsph/current_pair_fill.hpp"
+#include "kernels/ulsph/energy.hpp"
+#include "kernels/ulsph/step.hpp"
+
+namespace mfsd {
+
+namespace ulsph {
+template <class Real>
+struct FillScalar {
+  Real* p;
+  Real value;
+  MFSD_HD void operator()(Index i) const { p[i] = value; }
+};
+}  // namespace ulsph
+
+template <class B, int D, class Real>
+class UlsphSolver final : public ParticleSolver<B, D, Real> {
+  using Base = ParticleSolver<B, D, Real>;
+  using Base::conditions_, Base::contact_, Base::dt_next_, Base::init_, Base::particles_, Base::ranges_, Base::report_,
+      Base::results_, Base::scene_, Base::snapshot_fields_, Base::steps_, Base::time_;
+  using Base::declare_stage, Base::props, Base::run;
+
+ public:
+  UlsphSolver(const Scene& scene, const InitialParticles& init, const SolverOptions& options)
+      : Base(scene, init, options) {
+    for (const auto& c : scene.conditions) has_loads_ = has_loads_ || c.type != ConditionSpec::Type::velocity;
+    for (const char* name :
+         {"neighbors", "half_step", "stress", "force", "contact", "loads", "boundary", "advance", "time_step"})
+      if ((has_loads_ || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact"))
+        declare_stage(name);
+    conditions_.compile(scene_);
+  }
+
+  void initialize() override {
+    const Index n = particles_.size();
+    this->upload_kinematics();
+    // State: rho = rho0, m = rho0 V0, tau = 0, a_h = 0; the stage fields.
+    std::vector<Real> density(static_cast<size_t>(n)), mass(static_cast<size_t>(n));
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      for (Index i = ranges_[b].begin; i < ranges_[b].end; ++i) {
+        density[size_t(i)] = Real(scene_.bodies[b].material.density);
+        mass[size_t(i)] = Real(scene_.bodies[b].material.density * init_.volume[size_t(i)]);
+      }
+    particles_.template add<Real>(field::density);
+    from_host<B>(density, particles_.template buffer<Real>(field::density));
+    particles_.template add<Real>(field::mass);
+    from_host<B>(mass, particles_.template buffer<Real>(field::mass));
+    particles_.template add<Vec<D, Real>>(field::acceleration);
+    particles_.template add<Real>(field::pressure);
+    particles_.template add<Mat<D, Real>>(field::shear_stress);
+    particles_.template add<Mat<D, Real>>(field::correction_matrix);
+    particles_.template add<Mat<D, Real>>(field::velocity_gradient);
+    particles_.template add<Vec<D, Real>>(field::current_position);
+    particles_.template add<Real>(field::von_mises);
+    particles_.template add<Real>(field::jacobian);
+    if (scene_.solver.hourglass != HourglassControl::none)
+      particles_.template add<Vec<D, Real>>(field::hourglass_acceleration);
+    if (has_plastic_body(scene_)) {
+      particles_.template add<Real>(field::plastic_strain);  // a, the accumulated plastic strain
+      particles_.template add<Real>(field::plastic_scale);
+      parallel_for<B>(n, ulsph::FillScalar<Real>{particles_.template get<Real>(field::plastic_scale), Real(1)});
+    }
+    bool failure = false;
+    for (const auto& b : scene_.bodies) failure = failure || b.material.failure_pressure > 0;
+    if (failure) particles_.template add<unsigned char>(field::failed);
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) search_.push_back(BodySearch{ranges_[b], props(b).h});
+
+    // The first search sorts the particles by cell and, with solver.reorder,
+    // permutes every field into that order (memory locality for the run);
+    // later rebuilds keep the order and search through the cell order.
+    boxes_ = host_boxes();
+    rebuild(scene_.solver.reorder);
+    particles_.remove(field::reference_position_double);
+
+    snapshot_fields_ = {{"von_mises", field::von_mises},
+                        {"J", field::jacobian},
+                        {"pressure", field::pressure},
+                        {"density", field::density}};
+    if (particles_.has(field::plastic_strain)) snapshot_fields_.emplace_back("plastic_strain", field::plastic_strain);
+
+    const std::vector<Index> where = this->locate();
+    conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
+    if (scene_.contact.enabled) {
+      // Every particle of a body in contact is a candidate: its surface moves.
+      std::vector<BodyProperties> body_props;
+      for (size_t b = 0; b < scene_.bodies.size(); ++b) body_props.push_back(props(b));
+      contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)),
+                     std::vector<unsigned char>(size_t(n), 1));
+    }
+    this->locate_probes(where);
+    results_.clear();
+    conditions_.apply_initial(this->kinematics(), results_);
+    results_.fetch();
+    conditions_.collect(results_, this->kinematics());
+
+    // Initial stress (rho = rho0: p = 0, tau = 0) and the first time step.
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) gravity_at_start_.push_back(energy(b).gravity);
+    const StepStatistics<Real> stats =
+        transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
+                            StepStatisticsCombine<Real>{});
+    advection_step_ = advection_step(stats);
+    dt_next_ = std::min(acoustic_step(stats), advection_step_);
+
+    report_.particles = n;
+    for (auto& r : ranges_) report_.body_particles.push_back(r.size());
+    report_.pairs = long(pairs_);
+    const auto offsets = to_host<B>(offsets_);
+    report_.mean_neighbors = n ? double(pairs_) / n : 0;
+    report_.min_neighbors = n ? std::numeric_limits<long>::max() : 0;
+    report_.max_neighbors = 0;
+    for (Index i = 0; i < n; ++i) {
+      const long c = long(offsets[size_t(i) + 1] - offsets[size_t(i)]);
+      report_.min_neighbors = std::min(report_.min_neighbors, c);
+      report_.max_neighbors = std::max(report_.max_neighbors, c);
+    }
+    report_.regularized_corrections = fallback_count_;
+    const double pair_bytes = double(pairs_) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
+                              double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>));
+    report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
+  }
+
+  void step() override {
+    const long round_trips_before = round_trips();
+    const Index n = particles_.size();
+    const double dt = dt_next_;
+    const Real half_dt = Real(0.5 * dt);
+    results_.clear();
+    // The pair data of a rebuild are those of the half-step positions, at
+    // which the forces act and between the velocities of the two density
+    // half steps: the lag of pair directions behind a spinning body then
+    // cancels (docs/theory.md, "ULSPH").
+    run("half_step", [&] {
+      parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
+    });
+    if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
+    const PairList<D, Real> pairs = pair_list();
+    run("half_step", [&] {
+      parallel_for<B>(n, ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
+    });
+    run("stress", [&] {
+      for (size_t b = 0; b < scene_.bodies.size(); ++b) stress(b, pairs, Real(dt));
+    });
+    run("force", [&] {
+      for (size_t b = 0; b < scene_.bodies.size(); ++b) force(b, pairs, Real(dt));
+      parallel_for<B>(n, ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
+    });
+    const Kinematics<D, Real> k = this->kinematics();
+    if (contact_.enabled()) run("contact", [&] { contact_.apply(k, time_, dt, results_); });
+    if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
+    run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
+    ResultSlot<StepStatistics<Real>> stats_slot;
+    std::vector<ResultSlot<BoundingBox<D, Real>>> box_slots;
+    run("advance", [&] {
+      ulsph::SecondHalfStepFunctor<D, Real> f{{pairs, velocity(), real(field::density), displacement(), half_dt},
+                                              statistics_functor()};
+      stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
+                                   StepStatisticsCombine<Real>{});
+      // The boxes of the next search, should the next step rebuild.
+      for (const BodyRange& r : ranges_)
+        box_slots.push_back(results_.reduce(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
+                                            BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{}));
+    });
+    run("time_step", [&] {
+      results_.fetch();
+      conditions_.collect(results_, k);
+      contact_.collect(results_);
+      const StepStatistics<Real> stats = results_.get(stats_slot);
+      for (size_t b = 0; b < box_slots.size(); ++b) boxes_[b] = results_.get(box_slots[b]);
+      time_ += dt;
+      ++steps_;
+      if (stats.first_bad < n) fail(stats.first_bad);
+      // Dual criteria (seed 002 eq. 28-29): acoustic steps until the advection
+      // step is covered, then a new advection step with a neighbour rebuild.
+      advection_elapsed_ += dt;
+      const bool single = !scene_.solver.ulsph.dual_time_stepping;
+      rebuild_due_ = single || advection_elapsed_ >= advection_step_ * (1.0 - 1e-12);
+      if (rebuild_due_) {
+        advection_elapsed_ = 0;
+        advection_step_ = advection_step(stats);
+      }
+      dt_next_ = acoustic_step(stats);
+      if (!single) dt_next_ = std::min(dt_next_, advection_step_ - advection_elapsed_);
+    });
+    this->clock_.collect(this->timers_);
+    this->timers_.add_round_trips(round_trips() - round_trips_before);
+  }
+
+  EnergySample energies() override {
+    EnergySample e;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      const ulsph::EnergySums s = energy(b);
+      e.kinetic += s.kinetic;
+      e.strain += s.strain;
+      for (int a = 0; a < 3; ++a) e.momentum[a] += s.momentum[a];
+      BodyEnergy be;
+      be.kinetic = s.kinetic;
+      be.strain = s.strain;
+      be.gravity_work = s.gravity - gravity_at_start_[b];
+      this->add_shared_work(b, be);
+      for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
+      e.bodies.push_back(be);
+    }
+    return e;
+  }
+
+  void save_state(StateArchive& a) override {
+    this->save_shared_state(a);
+    a.put("solver/gravity_at_start", gravity_at_start_);
+    a.put_value("ulsph/advection_step", advection_step_);
+    a.put_value("ulsph/advection_elapsed", advection_elapsed_);
+    a.put_value("ulsph/rebuild_due", rebuild_due_ ? 1L : 0L);
+  }
+
+  // The neighbour list of the interrupted run was built from the positions at
+  // the start of its advection step, which a checkpoint does not keep; a
+  // continued run rebuilds from the restored positions, so it repeats the
+  // uninterrupted one to the size of the pair data's change in between.
+  void restore_state(const StateArchive& a) override {
+    this->restore_shared_state(a);
+    gravity_at_start_ = a.get<double>("solver/gravity_at_start", long(scene_.bodies.size()));
+    advection_step_ = a.get_value<double>("ulsph/advection_step");
+    advection_elapsed_ = a.get_value<double>("ulsph/advection_elapsed");
+    rebuild_due_ = a.get_value<long>("ulsph/rebuild_due") != 0;
+    boxes_ = host_boxes();
+    rebuild(false);
+  }
+
+ private:
+  void update_observables() override {
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      parallel_for<B>(ranges_[b].begin, ranges_[b].end,
+                      ulsph::ObservablesFunctor<D, Real>{mat(field::shear_stress), real(field::density),
+                                                         Real(scene_.bodies[b].material.density),
+                                                         real(field::von_mises), real(field::jacobian)});
+  }
+  void update_stress_observables() override { update_observables(); }
+
+  Real* real(const char* name) { return particles_.template get<Real>(name); }
+  Real* optional(const char* name) { return this->optional_real(name); }
+  Mat<D, Real>* mat(const char* name) { return particles_.template get<Mat<D, Real>>(name); }
+  Vec<D, Real>* velocity() { return particles_.template get<Vec<D, Real>>(field::velocity); }
+  Vec<D, Real>* acceleration() { return particles_.template get<Vec<D, Real>>(field::acceleration); }
+  Vec<D, Real>* displacement() { return particles_.template get<Vec<D, Real>>(field::displacement); }
+  const Vec<D, Real>* reference() { return particles_.template get<Vec<D, Real>>(field::reference_position); }
+
+  PairList<D, Real> pair_list() const {
+    return PairList<D, Real>{raw(offsets_), raw(neighbor_), raw(grad_), raw(stretch_), raw(gradient_sum_), nullptr};
+  }
+
+  // The bodies' boxes of the current positions (set-up and restarts; in a
+  // run they come with the step's results).
+  std::vector<BoundingBox<D, Real>> host_boxes() {
+    std::vector<BoundingBox<D, Real>> boxes;
+    for (const BodyRange& r : ranges_)
+      boxes.push_back(transform_reduce<B>(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
+                                          BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{}));
+    return boxes;
+  }
+
+  // Current-configuration search (host/neighbors/cell_list_search.hpp) and
+  // the pair data with V = m/rho, then B (seed 002 eq. 21). A body that has
+  // spread far (fragments) gets coarser cells, so that the grid never holds
+  // more than kCellsPerParticle cells per particle.
+  static constexpr double kCellsPerParticle = 4.0;
+  void rebuild(bool reorder) {
+    const Index n = particles_.size();
+    parallel_for<B>(
+        n, ulsph::CurrentPositionFunctor<D, Real>{reference(), displacement(),
+                                                  particles_.template get<Vec<D, Real>>(field::current_position)});
+    std::vector<CellGrid<D, Real>> grids;
+    std::int64_t first = 0;
+    for (size_t b = 0; b < search_.size(); ++b) {
+      double lo[D], hi[D], cell = 2.0 * search_[b].smoothing_length, cells = 1;
+      for (int a = 0; a < D; ++a) {
+        lo[a] = double(boxes_[b].lo.v[a]);
+        hi[a] = std::max(lo[a], double(boxes_[b].hi.v[a]));
+        cells *= std::floor((hi[a] - lo[a]) / cell) + 1;
+      }
+      const double limit = std::max(64.0, kCellsPerParticle * double(search_[b].range.size()));
+      if (cells > limit) cell *= std::pow(cells / limit, 1.0 / D);
+      grids.push_back(make_cell_grid<D, Real>(lo, hi, cell, first));
+      first += grids.back().cells;
+    }
+    sort_into_cells<B, D, Real>(particles_, field::current_position, grids, reorder, cells_);
+    CellNeighborhood<D, Real> hood = cell_neighborhood<B, D, Real>(particles_, field::current_position, cells_);
+    pairs_ = count_pairs<B, D, Real>(hood, search_, n, count_, offsets_);
+    neighbor_.resize(size_t(pairs_) + kPairPrefetchDistance, 0);  // padded for the prefetch
+    grad_.resize(size_t(pairs_));
+    stretch_.resize(size_t(pairs_));
+    gradient_sum_.resize(size_t(n));
+    for (const auto& s : search_) {
+      hood.radius2 = Real(4.0 * s.smoothing_length * s.smoothing_length);
+      parallel_for<B>(
+          s.range.begin, s.range.end,
+          ulsph::CurrentPairFillFunctor<D, Real>{hood, WendlandC2<D, Real>::make(Real(s.smoothing_length)),
+                                                 real(field::mass), real(field::density), raw(offsets_), raw(neighbor_),
+                                                 raw(grad_), raw(stretch_), raw(gradient_sum_)});
+    }
+    fallback_.resize(size_t(n));
+    parallel_for<B>(n, ulsph::CorrectionMatrixFunctor<D, Real>{pair_list(), mat(field::correction_matrix),
+                                                               raw(fallback_), Real(1e-3)});
+    if (reorder)  // at set-up: how many particles have too few neighbours for B
+      fallback_count_ =
+          long(thrust::count(BackendTraits<B>::policy(), fallback_.begin(), fallback_.end(), (unsigned char)1));
+  }
+
+  // The shear law of body b: J2 with linear hardening, or elastic.
+  ulsph::HypoelasticJ2<Real> shear_law(size_t b) {
+    const MaterialSpec& m = scene_.bodies[b].material;
+    if (m.model == MaterialModel::j2)
+      return ulsph::HypoelasticJ2<Real>::plastic(Real(props(b).G), Real(m.yield_stress), Real(m.hardening_modulus));
+    return ulsph::HypoelasticJ2<Real>::elastic(Real(props(b).G));
+  }
+
+  void stress(size_t b, const PairList<D, Real>& pairs, Real dt) {
+    const MaterialSpec& m = scene_.bodies[b].material;
+    const ulsph::LinearEquationOfState<Real> eos{Real(props(b).K), Real(m.density)};
+    const bool plastic = m.model == MaterialModel::j2;
+    auto launch = [&](auto failure) {
+      ulsph::StressFunctor<D, Real, decltype(failure)> f{pairs,
+                                                         velocity(),
+                                                         mat(field::correction_matrix),
+                                                         real(field::density),
+                                                         real(field::pressure),
+                                                         mat(field::velocity_gradient),
+                                                         mat(field::shear_stress),
+                                                         plastic ? real(field::plastic_strain) : nullptr,
+                                                         plastic ? real(field::plastic_scale) : nullptr,
+                                                         eos,
+                                                         failure,
+                                                         shear_law(b),
+                                                         dt};
+      parallel_for<B>(ranges_[b].begin, ranges_[b].end, f);
+    };
+    if (m.failure_pressure > 0)
+      launch(
+          ulsph::TensileFailure<Real>{Real(m.failure_pressure), particles_.template get<unsigned char>(field::failed)});
+    else
+      launch(ulsph::NoFailure{});
+  }
+
+  void force(size_t b, const PairList<D, Real>& pairs, Real dt) {
+    const MaterialSpec& m = scene_.bodies[b].material;
+    const bool plastic = m.model == MaterialModel::j2;
+    const HourglassControl hg = scene_.solver.hourglass;
+    // xi: 4 elastic, 0.2 plastic (gnog), 2 (gnog_amc) unless solver.ulsph.xi (formulations.md 3).
+    const double xi = scene_.solver.ulsph.xi > 0         ? scene_.solver.ulsph.xi
+                      : hg == HourglassControl::gnog_amc ? 2.0
+                      : plastic                          ? 0.2
+                                                         : 4.0;
+    Vec<D, Real> g;
+    for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
+    auto launch = [&](auto variant) {
+      ulsph::ForceFunctor<D, Real, decltype(variant)> f{
+          pairs,
+          velocity(),
+          real(field::density),
+          real(field::pressure),
+          mat(field::shear_stress),
+          mat(field::velocity_gradient),
+          plastic ? real(field::plastic_scale) : nullptr,
+          hg == HourglassControl::none ? nullptr : particles_.template get<Vec<D, Real>>(field::hourglass_acceleration),
+          acceleration(),
+          Real(m.density * props(b).c0),  // Z = rho0 c0 (formulations.md 3)
+          Real(xi),
+          Real(props(b).G),
+          dt,
+          g};
+      parallel_for<B>(ranges_[b].begin, ranges_[b].end, f);
+    };
+    if (hg == HourglassControl::gnog)
+      launch(ulsph::GnogStandard{});
+    else if (hg == HourglassControl::gnog_amc)
+      launch(ulsph::GnogAngularMomentumConserving{});
+    else
+      launch(ulsph::GnogNone{});
+  }
+
+  ulsph::EnergySums energy(size_t b) {
+    Vec<D, Real> g;
+    for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
+    return transform_reduce<B>(
+        ranges_[b].begin, ranges_[b].end,
+        ulsph::EnergyFunctor<D, Real>{velocity(), displacement(), real(field::mass), real(field::density),
+                                      real(field::pressure), mat(field::shear_stress), props(b).K, props(b).G, g},
+        ulsph::EnergySums{0, 0, {0, 0, 0}, 0}, ulsph::EnergySumsPlus{});
+  }
+
+  StepStatisticsFunctor<D, Real> statistics_functor() {
+    StepStatisticsFunctor<D, Real> f{reference(), displacement(),   velocity(), acceleration(), nullptr, nullptr, {},
+                                     {},          particles_.size()};
+    for (int a = 0; a < D; ++a) {
+      f.lower.v[a] = Real(scene_.bounds.min[a]);
+      f.upper.v[a] = Real(scene_.bounds.max[a]);
+    }
+    return f;
+  }
+
+  // dt_ac = CFL h / (c0 + |v|max) (seed 002 eq. 29), and the contact's bound.
+  double acoustic_step(const StepStatistics<Real>& s) {
+    const double vmax = std::sqrt(double(s.max_speed2));
+    double dt = std::numeric_limits<double>::infinity();
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) dt = std::min(dt, props(b).h / (props(b).c0 + vmax));
+    dt *= scene_.solver.cfl;
+    if (contact_.inverse_stable_step() > 0) dt = std::min(dt, 1.0 / contact_.inverse_stable_step());
+    return dt;
+  }
+
+  // dt_adv = C_adv h / max(U_ref, |v|max) (seed 002 eq. 28): no particle moves
+  // more than C_adv h between two neighbour searches.
+  double advection_step(const StepStatistics<Real>& s) {
+    const double speed = std::max(scene_.solver.ulsph.reference_speed, std::sqrt(double(s.max_speed2)));
+    if (!(speed > 0)) return std::numeric_limits<double>::infinity();
+    double h = std::numeric_limits<double>::infinity();
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) h = std::min(h, props(b).h);
+    return scene_.solver.ulsph.advection_cfl * h / speed;
+  }
+
+  // Finite and inside the bounds: the density was not (the pressure then is not either).
+  [[noreturn]] void fail(Index i) { Base::fail(i, {"density", "is not finite or not positive"}); }
+
+  std::vector<BodySearch> search_;
+  std::vector<BoundingBox<D, Real>> boxes_;  // per body, the current positions' box
+  CellIndex<B, D, Real> cells_;
+  DeviceVector<B, Index> count_;
+  DeviceVector<B, PairIndex> offsets_;
+  DeviceVector<B, Index> neighbor_;
+  DeviceVector<B, Vec<D, Real>> grad_;
+  DeviceVector<B, Real> stretch_;
+  DeviceVector<B, Vec<D, Real>> gradient_sum_;
+  DeviceVector<B, unsigned char> fallback_;
+  PairIndex pairs_ = 0;
+  long fallback_count_ = 0;
+  bool has_loads_ = false;
+  bool rebuild_due_ = false;
+  double advection_step_ = 0, advection_elapsed_ = 0;
+  std::vector<double> gravity_at_start_;
+};
+
+}  // namespace mfsd

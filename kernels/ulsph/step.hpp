@@ -1,0 +1,160 @@
+// The fused passes of one ULSPH acoustic step (seed 002 section 3.3, eq. 30-34;
+// formulations.md section 3, "Step"): a position-Verlet split in which each
+// pass reads its neighbours' fields that no pass writes at the same time.
+//   first half        u += dt/2 v, then (after a rebuild) rho += dt/2 drho/dt   (eq. 30, 14)
+//   StressFunctor     p = K (rho/rho0 - 1) with tension failure; L (eq. 20-21);
+//                     tau by the Jaumann rate and the J2 return (eq. 6-12)
+//   ForceFunctor      a = pressure with Riemann dissipation (eq. 15-17) + shear
+//                     (eq. 18) + the accumulated GNOG penalty (eq. 27-29) + g
+//   VelocityFunctor   v += dt a                                                  (eq. 31)
+//   second half       HalfStepFunctor at the new velocity                        (eq. 32)
+// Positions are displacements u = x - X (host/solver/common/kinematics.hpp).
+// The pair data (grad, stretch) stay those of the last neighbour rebuild
+// (ulsph_pair_fill.hpp) through the acoustic sub-steps of an advection step.
+#pragma once
+#include <type_traits>
+
+#include "kernels/core/mat.hpp"
+#include "kernels/core/step_statistics.hpp"
+#include "kernels/neighbors/pair_list.hpp"
+#include "kernels/ulsph/continuity.hpp"
+#include "kernels/ulsph/equation_of_state.hpp"
+#include "kernels/ulsph/failure.hpp"
+#include "kernels/ulsph/gnog.hpp"
+#include "kernels/ulsph/pressure_force.hpp"
+#include "kernels/ulsph/shear_force.hpp"
+#include "kernels/ulsph/shear_stress.hpp"
+#include "kernels/ulsph/velocity_gradient.hpp"
+
+namespace mfsd::ulsph {
+
+// No hourglass control (scene hourglass `none`, the SPH-OG of seed 002).
+struct GnogNone {};
+
+// rho and u through half a step at the current velocity (seed 002 eq. 30, 32).
+template <int D, class Real>
+struct HalfStepFunctor {
+  PairList<D, Real> pairs;
+  const Vec<D, Real>* velocity;
+  Real* density;
+  Vec<D, Real>* displacement;  // null: rho only
+  Real half_dt;
+
+  MFSD_HD void operator()(Index i) const {
+    const Real rho = density[i];
+    density[i] = rho + half_dt * density_rate(pairs, velocity, rho, i);  // seed 002 eq. 14
+    if (displacement) displacement[i] += velocity[i] * half_dt;
+  }
+};
+
+// u through half a step (the first half, before the pair data of the step are formed).
+template <int D, class Real>
+struct DisplacementHalfStepFunctor {
+  const Vec<D, Real>* velocity;
+  Vec<D, Real>* displacement;
+  Real half_dt;
+  MFSD_HD void operator()(Index i) const { displacement[i] += velocity[i] * half_dt; }
+};
+
+// The second half step, reduced to the time step's maxima and the health
+// check of the particle (kernels/core/step_statistics.hpp).
+template <int D, class Real>
+struct SecondHalfStepFunctor {
+  HalfStepFunctor<D, Real> half;
+  StepStatisticsFunctor<D, Real> statistics;
+  MFSD_HD StepStatistics<Real> operator()(Index i) const {
+    half(i);
+    return statistics(i);
+  }
+};
+
+// Pressure, velocity gradient and shear stress of one body's particles.
+template <int D, class Real, class Failure>
+struct StressFunctor {
+  PairList<D, Real> pairs;
+  const Vec<D, Real>* velocity;
+  const Mat<D, Real>* correction;  // B (velocity_gradient.hpp)
+  const Real* density;
+  Real* pressure;
+  Mat<D, Real>* velocity_gradient;
+  Mat<D, Real>* shear_stress;
+  Real* hardening;  // a of J2 bodies, else null
+  Real* kappa;      // plastic scale of J2 bodies, else null
+  LinearEquationOfState<Real> eos;
+  Failure failure;
+  HypoelasticJ2<Real> model;
+  Real dt;
+
+  MFSD_HD void operator()(Index i) const {
+    pressure[i] = failure(i, eos.pressure(density[i]));                                  // seed 002 section 2.1, 5.9
+    const Mat<D, Real> L = ulsph::velocity_gradient(pairs, velocity, correction[i], i);  // seed 002 eq. 20
+    velocity_gradient[i] = L;
+    const ShearStressUpdate<D, Real> r =
+        update_shear_stress(shear_stress[i], L, hardening ? hardening[i] : Real(0), model, dt);
+    shear_stress[i] = r.shear_stress;
+    if (hardening) hardening[i] = r.hardening;
+    if (kappa) kappa[i] = r.kappa;
+  }
+};
+
+// a = pressure + Riemann dissipation + shear + GNOG penalty + gravity of one
+// body's particles. Variant: GnogNone, GnogStandard, GnogAngularMomentumConserving.
+template <int D, class Real, class Variant>
+struct ForceFunctor {
+  PairList<D, Real> pairs;
+  const Vec<D, Real>* velocity;
+  const Real* density;
+  const Real* pressure;
+  const Mat<D, Real>* shear_stress;
+  const Mat<D, Real>* velocity_gradient;
+  const Real* kappa;                     // null: kappa = 1
+  Vec<D, Real>* hourglass_acceleration;  // a_h (null with GnogNone)
+  Vec<D, Real>* acceleration;
+  Real impedance;  // Z = rho0 c0
+  Real xi;         // GNOG coefficient of the body
+  Real shear_modulus;
+  Real dt;
+  Vec<D, Real> gravity;
+
+  MFSD_HD void operator()(Index i) const {
+    const Real rho = density[i];
+    Vec<D, Real> a = pressure_acceleration(pairs, velocity, pressure, rho, impedance, i);  // seed 002 eq. 15
+    a += shear_acceleration(pairs, shear_stress, rho, i);                                  // seed 002 eq. 18
+    if constexpr (!std::is_same<Variant, GnogNone>::value) {
+      Vec<D, Real> a_h = hourglass_acceleration[i];
+      if constexpr (std::is_same<Variant, GnogAngularMomentumConserving>::value)
+        a_h = rotate_with_spin(a_h, velocity_gradient[i], dt);  // formulations.md 3: a_h turns with the spin
+      a_h += gnog_penalty_rate<D, Real, Variant>(pairs, velocity, velocity_gradient, kappa, xi, shear_modulus, rho, i) *
+             dt;  // seed 002 eq. 29: accumulated
+      hourglass_acceleration[i] = a_h;
+      a += a_h;
+    }
+    acceleration[i] = a + gravity;
+  }
+};
+
+// v += dt a (seed 002 eq. 31).
+template <int D, class Real>
+struct VelocityFunctor {
+  const Vec<D, Real>* acceleration;
+  Vec<D, Real>* velocity;
+  Real dt;
+  MFSD_HD void operator()(Index i) const { velocity[i] += acceleration[i] * dt; }
+};
+
+// The output measures: von Mises stress sqrt(3/2) |tau| (the pressure adds no
+// deviator) and J = rho0 / rho of one body.
+template <int D, class Real>
+struct ObservablesFunctor {
+  const Mat<D, Real>* shear_stress;
+  const Real* density;
+  Real reference_density;
+  Real* von_mises;
+  Real* jacobian;
+  MFSD_HD void operator()(Index i) const {
+    von_mises[i] = math::sqrt(Real(1.5)) * frobenius_norm(shear_stress[i]);
+    jacobian[i] = reference_density / density[i];
+  }
+};
+
+}  // namespace mfsd::ulsph

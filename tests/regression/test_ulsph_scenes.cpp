@@ -1,0 +1,98 @@
+// ULSPH with GNOG (seed 002) on the shipped scenes at the CI resolution.
+//
+// Oscillating plate (configs/oscillating_plate_ulsph_2d.json, H/dp = 10,
+// nu = 0.3975, h = 1.3 dp, v_f = 0.05): the first period against seed 002
+// Table 1 (0.272; analytical 0.254) within the 2 %, the measured
+// 0.2741 to 0.3 % (regression), and the total energy, which only the
+// Riemann dissipation lowers, within -2 % / +0.5 % over two periods.
+//
+// Spinning plate (configs/spinning_plate_ulsph_2d.json, omega = 105 rad/s,
+// single-criterion stepping, gnog_amc): angular momentum L = sum m x ^ v and
+// the polar moment I = sum m |x|^2 from the particles. The plate stretches
+// until I = 68.6 (3 % above the start; the TLSPH run of the same plate gives
+// 68.5) and then spins at omega = L / I = 101.9 rad/s, as the TLSPH run does.
+// With the pair data of the step's start instead of its half step, the plate
+// crept outwards (I = 81.5 at t = 0.2 s) and gained 9 % of L (theory.md).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene_runner.hpp"
+
+using namespace mfsd;
+
+namespace {
+
+struct Spin {
+  double L, I;  // per unit mass: all particles have the same mass
+};
+
+Spin spin_of(const Snapshot& s) {
+  Spin r{0, 0};
+  for (size_t i = 0; i < s.n; ++i) {
+    const double x = s.position[3 * i], y = s.position[3 * i + 1];
+    r.L += x * s.velocity[3 * i + 1] - y * s.velocity[3 * i];
+    r.I += x * x + y * y;
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST(UlsphOscillatingPlate, PeriodAndEnergyAtCiResolution) {
+  auto t = test::run_config("oscillating_plate_ulsph_2d.json", {"solver.end_time=0.62"}, Precision::double_precision, 0,
+                            200);
+  std::vector<double> y;
+  for (const auto& p : t.probes) y.push_back(p[0].position[1]);
+  const double T = test::oscillation_period(t.time, y);
+  EXPECT_LT(std::abs(T / 0.272 - 1), 0.02) << "T = " << T;
+  EXPECT_NEAR(T, 0.2741, 0.003 * 0.2741);
+  const double e0 = t.energies.front().kinetic + t.energies.front().strain;
+  double lo = e0, hi = e0;
+  for (const auto& e : t.energies) lo = std::min(lo, e.kinetic + e.strain), hi = std::max(hi, e.kinetic + e.strain);
+  // Measured: 4.0029 to 4.0790 against 4.0648 (-1.5 % to +0.35 %): the
+  // stored-energy measure of the hypo-elastic solid (energy.hpp) is exact at
+  // small strain only.
+  EXPECT_GT(lo, 0.98 * e0);
+  EXPECT_LT(hi, 1.005 * e0);
+  RecordProperty("energy_low", std::to_string(lo / e0));
+  RecordProperty("period", std::to_string(T));
+}
+
+TEST(UlsphSpinningPlate, KeepsAngularMomentumAndSettles) {
+  const SceneDocument doc = test::load_config("spinning_plate_ulsph_2d.json", {});
+  const InitialParticles particles = generate_particles(doc.scene);
+  auto solver = make_solver(doc.scene, particles, SolverOptions{});
+  solver->initialize();
+  const Spin s0 = spin_of(solver->snapshot());
+  EXPECT_NEAR(s0.L / s0.I, 105.0, 1e-9);
+  Spin early{0, 0};
+  while (solver->time() < 0.2 * (1 - 1e-12)) {
+    solver->limit_next_dt(0.2 - solver->time());
+    solver->step();
+    if (early.I == 0 && solver->time() >= 0.04) early = spin_of(solver->snapshot());
+  }
+  const Spin s1 = spin_of(solver->snapshot());
+  EXPECT_NEAR(s1.L, s0.L, 0.005 * s0.L);
+  EXPECT_NEAR(s1.I, early.I, 0.002 * early.I);  // no creep after the stretch
+  EXPECT_NEAR(s1.I, 68.6, 0.01 * 68.6);
+  EXPECT_NEAR(s1.L / s1.I, 101.9, 0.5);
+}
+
+TEST(UlsphSpinningPlate, MethodsAgreeOnTheStretchedPlate) {
+  // The same plate in TLSPH (neo-Hookean, GENOG): the same polar moment.
+  const SceneDocument doc = test::load_config("spinning_plate_ulsph_2d.json",
+                                              {"solver.method=tlsph", "solver.hourglass=genog", "solver.ulsph=null",
+                                               "bodies.plate.material.model=neo_hookean", "solver.end_time=0.1"});
+  const InitialParticles particles = generate_particles(doc.scene);
+  auto solver = make_solver(doc.scene, particles, SolverOptions{});
+  solver->initialize();
+  while (solver->time() < 0.1 * (1 - 1e-12)) {
+    solver->limit_next_dt(0.1 - solver->time());
+    solver->step();
+  }
+  const Spin s = spin_of(solver->snapshot());
+  EXPECT_NEAR(s.I, 68.6, 0.01 * 68.6);
+  EXPECT_NEAR(s.L / s.I, 101.9, 0.5);
+}
