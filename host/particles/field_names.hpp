@@ -43,6 +43,7 @@ inline constexpr const char* phase_field_next = "phase_field_next";    // s_{n+1
 // ULSPH (host/solver/ulsph/; kernels/ulsph/): the state and the stage fields.
 inline constexpr const char* mass = "mass";                                      // m = rho0 V0
 inline constexpr const char* density = "density";                                // rho
+inline constexpr const char* density_next = "density_next";                      // rho of a pass that reads rho
 inline constexpr const char* pressure = "pressure";                              // p = K (rho/rho0 - 1)
 inline constexpr const char* velocity_gradient = "velocity_gradient";            // L_ab = dv_a/dx_b
 inline constexpr const char* hourglass_acceleration = "hourglass_acceleration";  // GNOG a_h, accumulated

@@ -4,9 +4,11 @@
 //   grad_ij = V_j dW/dr(r_ij) e_ij,  stretch_ij = V_j dW/dr(r_ij) / r_ij,
 // and the row's gradient sum, in Real from the current positions.
 #pragma once
+#include "kernels/core/mat.hpp"
 #include "kernels/neighbors/cell_list.hpp"
 #include "kernels/neighbors/pair_list.hpp"
 #include "kernels/sph/wendland_c2.hpp"
+#include "kernels/ulsph/continuity.hpp"
 
 namespace mfsd::ulsph {
 
@@ -40,6 +42,74 @@ struct CurrentPairFillFunctor {
     Writer w{this, offsets[i], Vec<D, Real>::zero()};
     hood.for_each(i, w);
     gradient_sum[i] = w.sum;
+  }
+};
+
+// Between two searches of a dual-criteria step: the pair data of the
+// existing pairs of row i formed again at the current positions (x = X + u)
+// and volumes, and B_i from them (velocity_gradient.hpp); a pair that has
+// left the support gets dW = 0. Pair directions then follow a turning body
+// instead of lagging it by the advection step (docs/theory.md, "ULSPH").
+template <int D, class Real>
+struct PairRefreshFunctor {
+  const Vec<D, Real>* reference_position;
+  const Vec<D, Real>* displacement;
+  WendlandC2<D, Real> kernel;
+  const Real* mass;
+  const Real* density;
+  const PairIndex* offsets;
+  const Index* neighbor;
+  Vec<D, Real>* grad;
+  Real* stretch;
+  Vec<D, Real>* gradient_sum;
+
+  // Row i again; returns the moment matrix A_i = -sum_j grad (x) grad / stretch
+  // of the new row (velocity_gradient.hpp), formed in the same loop.
+  MFSD_HD Mat<D, Real> refresh(Index i) const {
+    const Vec<D, Real> xi = reference_position[i] + displacement[i];
+    Vec<D, Real> sum = Vec<D, Real>::zero();
+    Mat<D, Real> A = Mat<D, Real>::zero();
+    for (PairIndex k = offsets[i]; k < offsets[i + 1]; ++k) {
+      const Index j = neighbor[k];
+      prefetch(&displacement[neighbor[k + kPairPrefetchDistance]]);
+      const Vec<D, Real> d = xi - (reference_position[j] + displacement[j]);
+      const Real r = norm(d);
+      const Real dwv_r = r > Real(0) ? mass[j] / density[j] * kernel.dW(r) / r : Real(0);
+      const Vec<D, Real> g = d * dwv_r;
+      grad[k] = g;
+      stretch[k] = dwv_r;
+      sum += g;
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) A.m[a][b] -= d.v[a] * g.v[b];  // seed 002 eq. 21: -(x_i - x_j) (x) grad
+    }
+    gradient_sum[i] = sum;
+    return A;
+  }
+
+  MFSD_HD void operator()(Index i) const { refresh(i); }
+};
+
+// The first half step of a dual-criteria step between searches, fused per
+// row: the pair data of row i at the half-step positions, B_i from them
+// (B = I where det A_i < min_determinant, as CorrectionMatrixFunctor), then
+// rho_i through half a step (continuity reads row i only).
+template <int D, class Real>
+struct RefreshHalfStepFunctor {
+  PairRefreshFunctor<D, Real> pairs;
+  const Vec<D, Real>* velocity;
+  Real* density_out;  // rho_i after the half step: not pairs.density, whose neighbours' values V_j = m_j / rho_j
+                      // reads while the pass runs (the caller copies it back)
+  Mat<D, Real>* correction;
+  Real min_determinant;
+  Real half_dt;
+
+  MFSD_HD void operator()(Index i) const {
+    const Mat<D, Real> A = pairs.refresh(i);
+    const Real d = det(A);
+    correction[i] = d >= min_determinant ? inverse(A) : Mat<D, Real>::identity();  // seed 002 eq. 21
+    const PairList<D, Real> row{pairs.offsets, pairs.neighbor, pairs.grad, pairs.stretch, pairs.gradient_sum, nullptr};
+    const Real rho = pairs.density[i];
+    density_out[i] = rho + half_dt * density_rate(row, velocity, rho, i);  // seed 002 eq. 14
   }
 };
 

@@ -22,7 +22,8 @@ MFSD_HD inline Mat<D, Real> correction_moment(const PairList<D, Real>& pairs, In
   Mat<D, Real> A = Mat<D, Real>::zero();
   for (PairIndex k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k) {
     const Vec<D, Real> g = pairs.grad[k];
-    const Real w = -Real(1) / pairs.stretch[k];  // -(x_i - x_j) = -grad/stretch; stretch != 0 (r < support)
+    if (pairs.stretch[k] == Real(0)) continue;   // a pair at the edge of the support, or moved out of it
+    const Real w = -Real(1) / pairs.stretch[k];  // -(x_i - x_j) = -grad/stretch
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b) A.m[a][b] += w * g.v[a] * g.v[b];  // seed 002 eq. 21
   }

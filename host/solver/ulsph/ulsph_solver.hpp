@@ -18,6 +18,7 @@
 // only, bodies meet by contact. Positions are displacements from the initial
 // positions (kinematics.hpp). Include after the backend header.
 #pragma once
+#include <thrust/copy.h>
 #include <thrust/count.h>
 
 #include <algorithm>
@@ -78,6 +79,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     from_host<B>(density, particles_.template buffer<Real>(field::density));
     particles_.template add<Real>(field::mass);
     from_host<B>(mass, particles_.template buffer<Real>(field::mass));
+    if (scene_.solver.ulsph.refresh_pairs)
+      particles_.template add<Real>(field::density_next);
     particles_.template add<Vec<D, Real>>(field::acceleration);
     particles_.template add<Real>(field::pressure);
     particles_.template add<Mat<D, Real>>(field::shear_stress);
@@ -165,11 +168,15 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     run("half_step", [&] {
       parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
     });
+    const bool refresh = !rebuild_due_ && scene_.solver.ulsph.refresh_pairs;
     if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
     const PairList<D, Real> pairs = pair_list();
-    run("half_step", [&] {
-      parallel_for<B>(n, ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
-    });
+    if (refresh)  // pair data, B and the density half step in one pass over the rows
+      run("half_step", [&] { refresh_half_step(half_dt); });
+    else
+      run("half_step", [&] {
+        parallel_for<B>(n, ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
+      });
     run("stress", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) stress(b, pairs, Real(dt));
     });
@@ -335,6 +342,24 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (reorder)  // at set-up: how many particles have too few neighbours for B
       fallback_count_ =
           long(thrust::count(BackendTraits<B>::policy(), fallback_.begin(), fallback_.end(), (unsigned char)1));
+  }
+
+  // The pair data of the kept pairs at the half-step positions, B and the
+  // first density half step (ulsph::RefreshHalfStepFunctor).
+  void refresh_half_step(Real half_dt) {
+    Real* next = real(field::density_next);
+    for (const auto& s : search_)
+      parallel_for<B>(
+          s.range.begin, s.range.end,
+          ulsph::RefreshHalfStepFunctor<D, Real>{
+              {reference(), displacement(), WendlandC2<D, Real>::make(Real(s.smoothing_length)), real(field::mass),
+               real(field::density), raw(offsets_), raw(neighbor_), raw(grad_), raw(stretch_), raw(gradient_sum_)},
+              velocity(),
+              next,
+              mat(field::correction_matrix),
+              Real(1e-3),
+              half_dt});
+    thrust::copy(BackendTraits<B>::policy(), next, next + particles_.size(), real(field::density));
   }
 
   // The shear law of body b: J2 with linear hardening, or elastic.

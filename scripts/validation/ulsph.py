@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""ULSPH with GNOG (seed 002): the studies behind docs/validation.md.
+
+  plate     oscillating plate 2-D (configs/oscillating_plate_ulsph_2d.json,
+            nu = 0.3975, h = 1.3 dp): the period of the first two
+            oscillations for v_f = 0.001, 0.01, 0.03, 0.05 at H/dp = --res
+            (default 10 20) against seed 002 Table 1 (0.275 0.273 0.272 0.272)
+            and theory (0.254); tip deflection plot.
+  spinning  spinning plate (configs/spinning_plate_ulsph_2d.json): angular
+            momentum L = sum m x ^ v and polar moment I = sum m |x|^2 over
+            time for gnog and gnog_amc with single-criterion stepping, gnog_amc
+            with dual stepping, and the same plate in TLSPH (neo-Hookean,
+            genog); the corner's distance from the centre.
+
+Writes docs/validation/ulsph_<study>.json and .png.
+Usage: scripts/validation/ulsph.py plate|spinning [--res 10 20] [--threads N] [--reuse]
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(__file__))
+import mfsd_runs as m  # noqa: E402
+
+DOCS = os.path.join(m.ROOT, "docs", "validation")
+OUT = os.path.join(m.ROOT, "out", "validation", "ulsph")
+TABLE1 = {0.001: 0.275, 0.01: 0.273, 0.03: 0.272, 0.05: 0.272}  # seed 002 Table 1, SPH-GNOG
+THEORY = 0.254
+
+
+def plate(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    res = args.res or [10, 20]
+    result = {"config": "configs/oscillating_plate_ulsph_2d.json", "machine": m.machine(), "cases": []}
+    fig, ax = plt.subplots(1, 2, figsize=(12, 4.5))
+    for r in res:
+        for vf, seed in TABLE1.items():
+            out = os.path.join(OUT, f"plate_vf{vf}_H{r}")
+            probes, energies, timing = m.run_and_read(
+                "configs/oscillating_plate_ulsph_2d.json",
+                {"constants.vf": vf, "constants.H_over_dp": r, "solver.end_time": 0.62, "output.vtu": "false"},
+                out, args.threads, args.reuse)
+            t, y = probes["time"], probes["tip.position.y"]
+            T = m.period(t, y)
+            e = [k + s for k, s in zip(energies["kinetic"], energies["strain"])]
+            case = {"H_over_dp": r, "vf": vf, "period": T, "seed": seed, "error_vs_seed": T / seed - 1,
+                    "error_vs_theory": T / THEORY - 1, "energy_range": [min(e) / e[0] - 1, max(e) / e[0] - 1],
+                    "particle_steps_per_second": timing.get("particle_steps_per_second")}
+            result["cases"].append(case)
+            print(f"H/dp={r} vf={vf}: T={T:.4f} (seed {seed}, {100 * case['error_vs_seed']:+.2f} %)")
+            if vf == 0.05:
+                ax[0].plot(t, [v / vf for v in y], label=f"H/dp = {r}, v_f = {vf}")
+        ax[1].plot(list(TABLE1), [c["period"] for c in result["cases"] if c["H_over_dp"] == r], "o-",
+                   label=f"mfsd H/dp = {r}")
+    ax[1].plot(list(TABLE1), list(TABLE1.values()), "ks--", label="seed 002 Table 1")
+    ax[1].axhline(THEORY, color="gray", lw=0.8, label="theory 0.254")
+    ax[0].set_xlabel("t [s]")
+    ax[0].set_ylabel("tip y / v_f")
+    ax[0].legend()
+    ax[1].set_xscale("log")
+    ax[1].set_xlabel("v_f")
+    ax[1].set_ylabel("period [s]")
+    ax[1].legend()
+    fig.suptitle("ULSPH oscillating plate (nu = 0.3975, h = 1.3 dp)")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_plate"), result, fig)
+
+
+def spin_history(outdir):
+    import numpy as np
+    import vtu
+    rows = []
+    for t, path in vtu.snapshots(outdir):
+        s = vtu.read_vtu(path)
+        x, v = s["points"][:, :2], s["velocity"][:, :2]
+        L = float(np.sum(x[:, 0] * v[:, 1] - x[:, 1] * v[:, 0]))
+        I = float(np.sum(x[:, 0] ** 2 + x[:, 1] ** 2))
+        rows.append((t, L, I))
+    return rows
+
+
+def spinning(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cases = [("gnog_amc single", {"solver.hourglass": "gnog_amc"}),
+             ("gnog single", {"solver.hourglass": "gnog"}),
+             ("gnog_amc dual", {"solver.hourglass": "gnog_amc", "solver.ulsph.time_stepping": "dual"}),
+             ("TLSPH genog", {"solver.method": "tlsph", "solver.hourglass": "genog", "solver.ulsph": "null",
+                              "bodies.plate.material.model": "neo_hookean", "solver.cfl": 0.4})]
+    result = {"config": "configs/spinning_plate_ulsph_2d.json", "machine": m.machine(), "cases": []}
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
+    for name, sets in cases:
+        out = os.path.join(OUT, "spinning_" + name.replace(" ", "_"))
+        probes, _, _ = m.run_and_read("configs/spinning_plate_ulsph_2d.json", sets, out, args.threads, args.reuse)
+        h = spin_history(out)
+        t = [r[0] for r in h]
+        L0 = h[0][1]
+        result["cases"].append({"case": name, "L_change": h[-1][1] / L0 - 1, "I_end": h[-1][2],
+                                "omega_end": h[-1][1] / h[-1][2], "t_end": t[-1]})
+        print(f"{name}: L {100 * (h[-1][1] / L0 - 1):+.2f} %, I = {h[-1][2]:.2f}, omega = {h[-1][1] / h[-1][2]:.2f}")
+        ax[0].plot(t, [r[1] / L0 for r in h], label=name)
+        ax[1].plot(t, [r[2] for r in h], label=name)
+        r = [(x * x + y * y) ** 0.5 for x, y in zip(probes["corner.position.x"], probes["corner.position.y"])]
+        ax[2].plot(probes["time"], r, label=name)
+    ax[0].set_ylabel("L / L(0)")
+    ax[1].set_ylabel("I = sum |x|^2 (per unit mass)")
+    ax[2].set_ylabel("corner distance from the centre [m]")
+    for a in ax:
+        a.set_xlabel("t [s]")
+        a.legend()
+    fig.suptitle("spinning plate, omega = 105 rad/s (seed 002 section 5.5)")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_spinning"), result, fig)
+
+
+if __name__ == "__main__":
+    study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
+    args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
+    {"plate": plate, "spinning": spinning}.get(study, lambda a: sys.exit(__doc__))(args)
