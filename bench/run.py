@@ -31,6 +31,7 @@ def main():
     p.add_argument("--backend", default="cpu", choices=["cpu", "cuda"])
     p.add_argument("--quick", action="store_true", help="smaller cases and one repeat (a smoke run)")
     p.add_argument("--repeats", type=int, default=0, help="repeats per configuration (default 3, quick 1)")
+    p.add_argument("--only", default="", help="throughput: only the cases whose label contains this text")
     args = p.parse_args()
     if not os.path.exists(b.m.BINARY):
         sys.exit(f"[bench] no mfsd binary at {b.m.BINARY}; run scripts/bench.sh, which builds it")

@@ -76,6 +76,10 @@ CASES = [
     ("RelaxationDouble", "twisting_column_3d-relaxation", "twisting_column_3d.json",
      ["constants.H_over_dp=4", 'solver.relaxation={"viscosity": 100}'], "double"),
     ("FractureDouble", "crack_branching_2d", "crack_branching_2d.json", ["constants.dp=0.5e-3"], "double"),
+    ("UlsphDouble", "oscillating_plate_ulsph_2d", "oscillating_plate_ulsph_2d.json", [], "double"),
+    ("UlsphDouble", "spinning_plate_ulsph_2d", "spinning_plate_ulsph_2d.json", ["solver.ulsph.time_stepping=dual"],
+     "double"),
+    ("UlsphFloat", "oscillating_plate_ulsph_2d-float", "oscillating_plate_ulsph_2d.json", [], "float"),
 ]
 # The plate's period: its default (genog) run to the tip's second zero crossing.
 PERIOD_CASE = ("OscillatingPlatePeriodDouble", "oscillating_plate_2d-period", "oscillating_plate_2d.json", [],

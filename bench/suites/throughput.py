@@ -1,8 +1,10 @@
 """Suite `throughput`: particle-steps/s, time per step, per-stage share and
 peak memory per particle of the TLSPH step (genog, neo-Hookean) for the
 bending column 3D (about 10k, 80k, 650k particles) and the oscillating plate
-2D (three sizes), on 1 and all threads, in float and double. A fixed number
-of steps after a warm-up; the median of several repeats."""
+2D (three sizes), and of the ULSPH acoustic step (gnog, dual-criteria
+stepping: the neighbour search once per advection step) for the oscillating
+plate of seed 002 (three sizes), on 1 and all threads, in float and double.
+A fixed number of steps after a warm-up; the median of several repeats."""
 import os
 
 import bench_lib as b
@@ -14,8 +16,13 @@ CASES = [  # (label, scene, H/dp)
     ("oscillating plate 2D", b.PLATE, 20),
     ("oscillating plate 2D", b.PLATE, 40),
     ("oscillating plate 2D", b.PLATE, 80),
+    ("ULSPH oscillating plate 2D", b.PLATE_ULSPH, 10),
+    ("ULSPH oscillating plate 2D", b.PLATE_ULSPH, 20),
+    ("ULSPH oscillating plate 2D", b.PLATE_ULSPH, 40),
 ]
-QUICK = [c for c in CASES if c[2] in (12, 24, 20, 40)]
+QUICK = [c for c in CASES if c[2] in (12, 24, 20, 40) or c[1] == b.PLATE_ULSPH]
+# The stages whose shares the table shows, per method.
+SHARES = {"tlsph": ("force", "deformation_rate", "stress"), "ulsph": ("force", "neighbors", "half_step", "stress")}
 
 
 def timed_steps(particles):
@@ -27,9 +34,12 @@ def main(args):
     repeats = args.repeats or (1 if args.quick else 3)
     rows = []
     for label, scene, res in (QUICK if args.quick else CASES):
+        if args.only and args.only not in label:
+            continue
         for precision in ("double", "float"):
             for t in threads:
-                sets = {"constants.H_over_dp": res, "solver.hourglass": "genog", **b.QUIET_OUTPUT}
+                hourglass = "gnog" if scene == b.PLATE_ULSPH else "genog"
+                sets = {"constants.H_over_dp": res, "solver.hourglass": hourglass, **b.QUIET_OUTPUT}
                 out = os.path.join(b.OUT, "throughput", f"{os.path.basename(scene)[:-5]}_{res}_{precision}_{t}")
                 # Size the run from a one-step probe of the particle count.
                 probe, _, _ = b.run(scene, sets, out, threads=t, precision=precision, backend=args.backend,
@@ -50,10 +60,11 @@ def main(args):
                     "setup_seconds": timing["setup_seconds"],
                 })
     md = ["| case | H/dp | particles | nbrs | precision | threads | M particle-steps/s | ms/step | "
-          "force / rate / stress share | peak memory [B/particle] |", "|" + "---|" * 10]
+          "stage shares | peak memory [B/particle] |", "|" + "---|" * 10]
     for r in rows:
         s = r["stages"]
-        share = " / ".join(f"{100 * s[k]['share']:.0f} %" for k in ("force", "deformation_rate", "stress") if k in s)
+        keys = SHARES["ulsph" if r["scene"] == b.PLATE_ULSPH else "tlsph"]
+        share = ", ".join(f"{k} {100 * s[k]['share']:.0f} %" for k in keys if k in s)
         md.append(f"| {r['case']} | {r['H_over_dp']} | {r['particles']} | {r['neighbors_per_particle']:.1f} | "
                   f"{r['precision']} | {r['threads'] or 'gpu'} | {b.mega(r['particle_steps_per_second']):.2f} | "
                   f"{r['microseconds_per_step'] / 1e3:.2f} | {share} | {r['peak_memory_bytes_per_particle']:.0f} |")
@@ -80,8 +91,8 @@ def main(args):
 
 def plot(rows, threads, path):
     plt = b.plt()
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    for ax, label in zip(axes, ("bending column 3D", "oscillating plate 2D")):
+    fig, axes = plt.subplots(1, 3, figsize=(16, 4))
+    for ax, label in zip(axes, ("bending column 3D", "oscillating plate 2D", "ULSPH oscillating plate 2D")):
         sub = [r for r in rows if r["case"] == label]
         sizes = sorted({r["particles"] for r in sub})
         configs = [(p, t) for p in ("double", "float") for t in threads]
@@ -95,7 +106,7 @@ def plot(rows, threads, path):
         ax.set_xticklabels([f"{n:,}" for n in sizes])
         ax.set_xlabel("particles")
         ax.set_ylabel("million particle-steps / s")
-        ax.set_title(f"{label}, genog")
+        ax.set_title(f"{label}, {'gnog' if label.startswith('ULSPH') else 'genog'}")
         ax.grid(axis="y", alpha=0.3)
     axes[0].legend(fontsize=8)
     fig.tight_layout()

@@ -9,8 +9,9 @@
   spinning  spinning plate (configs/spinning_plate_ulsph_2d.json): angular
             momentum L = sum m x ^ v and polar moment I = sum m |x|^2 over
             time for gnog and gnog_amc with single-criterion stepping, gnog_amc
-            with dual stepping, and the same plate in TLSPH (neo-Hookean,
-            genog); the corner's distance from the centre.
+            with dual stepping (pair data formed every step, and frozen over the
+            advection step as in the seed), and the same plate in TLSPH
+            (neo-Hookean, genog); the corner's distance from the centre.
 
 Writes docs/validation/ulsph_<study>.json and .png.
 Usage: scripts/validation/ulsph.py plate|spinning [--res 10 20] [--threads N] [--reuse]
@@ -87,6 +88,8 @@ def spinning(args):
     cases = [("gnog_amc single", {"solver.hourglass": "gnog_amc"}),
              ("gnog single", {"solver.hourglass": "gnog"}),
              ("gnog_amc dual", {"solver.hourglass": "gnog_amc", "solver.ulsph.time_stepping": "dual"}),
+             ("gnog_amc dual frozen pairs", {"solver.hourglass": "gnog_amc", "solver.ulsph.time_stepping": "dual",
+                                             "solver.ulsph.refresh_pairs": "false"}),
              ("TLSPH genog", {"solver.method": "tlsph", "solver.hourglass": "genog", "solver.ulsph": "null",
                               "bodies.plate.material.model": "neo_hookean", "solver.cfl": 0.4})]
     result = {"config": "configs/spinning_plate_ulsph_2d.json", "machine": m.machine(), "cases": []}

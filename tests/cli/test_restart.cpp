@@ -130,6 +130,13 @@ TEST_F(Restart, RelaxationContinuesBitForBit) {
                             133);
 }
 
+// ULSPH: the list of pairs is part of the state (its pair data are formed
+// again each step); 707 stops in the middle of an advection step.
+TEST_F(Restart, UlsphPlateContinuesBitForBit) {
+  expect_restart_reproduces(scene("oscillating_plate_ulsph_2d.json"),
+                            "--set solver.end_time=0.02 --set output.interval=0.005", 707);
+}
+
 // The phase field, its history and rate are particle fields like the others.
 TEST_F(Restart, FractureContinuesBitForBit) { expect_restart_reproduces(scene("notched_bar_2d.json"), "", 301); }
 

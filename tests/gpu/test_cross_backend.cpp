@@ -445,3 +445,18 @@ TEST(CrossBackend, FractureDouble) {
   MFSD_REQUIRE_CUDA_DEVICE();
   compare("crack_branching_2d", "crack_branching_2d.json", {"constants.dp=0.5e-3"}, Precision::double_precision);
 }
+
+// ULSPH (seed 002): the plate with dual-criteria stepping (searches on the
+// device every advection step, pair data formed every step), the spinning
+// plate (gnog_amc, dual), and the plate in float.
+TEST(CrossBackend, UlsphDouble) {
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("oscillating_plate_ulsph_2d", "oscillating_plate_ulsph_2d.json", {}, Precision::double_precision);
+  compare("spinning_plate_ulsph_2d", "spinning_plate_ulsph_2d.json", {"solver.ulsph.time_stepping=dual"},
+          Precision::double_precision);
+}
+
+TEST(CrossBackend, UlsphFloat) {
+  MFSD_REQUIRE_CUDA_DEVICE();
+  compare("oscillating_plate_ulsph_2d-float", "oscillating_plate_ulsph_2d.json", {}, Precision::single_precision);
+}

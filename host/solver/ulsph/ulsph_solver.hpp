@@ -79,8 +79,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     from_host<B>(density, particles_.template buffer<Real>(field::density));
     particles_.template add<Real>(field::mass);
     from_host<B>(mass, particles_.template buffer<Real>(field::mass));
-    if (scene_.solver.ulsph.refresh_pairs)
-      particles_.template add<Real>(field::density_next);
+    if (scene_.solver.ulsph.refresh_pairs) particles_.template add<Real>(field::density_next);
     particles_.template add<Vec<D, Real>>(field::acceleration);
     particles_.template add<Real>(field::pressure);
     particles_.template add<Mat<D, Real>>(field::shear_stress);
@@ -249,12 +248,14 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     a.put_value("ulsph/advection_step", advection_step_);
     a.put_value("ulsph/advection_elapsed", advection_elapsed_);
     a.put_value("ulsph/rebuild_due", rebuild_due_ ? 1L : 0L);
+    a.put("ulsph/offsets", to_host<B>(offsets_));
+    a.put("ulsph/neighbor", to_host<B>(neighbor_));
   }
 
-  // The neighbour list of the interrupted run was built from the positions at
-  // the start of its advection step, which a checkpoint does not keep; a
-  // continued run rebuilds from the restored positions, so it repeats the
-  // uninterrupted one to the size of the pair data's change in between.
+  // The list of pairs comes back as it was; its pair data and B are formed
+  // again by the next step (a search, or the refresh of the kept pairs), as
+  // in the uninterrupted run. With refresh_pairs false the frozen pair data
+  // are formed at the restored positions instead of the advection step's.
   void restore_state(const StateArchive& a) override {
     this->restore_shared_state(a);
     gravity_at_start_ = a.get<double>("solver/gravity_at_start", long(scene_.bodies.size()));
@@ -262,7 +263,13 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     advection_elapsed_ = a.get_value<double>("ulsph/advection_elapsed");
     rebuild_due_ = a.get_value<long>("ulsph/rebuild_due") != 0;
     boxes_ = host_boxes();
-    rebuild(false);
+    const auto offsets = a.get<PairIndex>("ulsph/offsets", long(particles_.size()) + 1);
+    pairs_ = offsets.back();
+    from_host<B>(offsets, offsets_);
+    from_host<B>(a.get<Index>("ulsph/neighbor", long(pairs_) + kPairPrefetchDistance), neighbor_);
+    grad_.resize(size_t(pairs_));
+    stretch_.resize(size_t(pairs_));
+    if (!scene_.solver.ulsph.refresh_pairs) refresh_pair_data();
   }
 
  private:
@@ -342,6 +349,18 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (reorder)  // at set-up: how many particles have too few neighbours for B
       fallback_count_ =
           long(thrust::count(BackendTraits<B>::policy(), fallback_.begin(), fallback_.end(), (unsigned char)1));
+  }
+
+  // The pair data of the kept pairs at the current positions and B (restarts).
+  void refresh_pair_data() {
+    for (const auto& s : search_)
+      parallel_for<B>(
+          s.range.begin, s.range.end,
+          ulsph::PairRefreshFunctor<D, Real>{
+              reference(), displacement(), WendlandC2<D, Real>::make(Real(s.smoothing_length)), real(field::mass),
+              real(field::density), raw(offsets_), raw(neighbor_), raw(grad_), raw(stretch_), raw(gradient_sum_)});
+    parallel_for<B>(particles_.size(), ulsph::CorrectionMatrixFunctor<D, Real>{
+                                           pair_list(), mat(field::correction_matrix), raw(fallback_), Real(1e-3)});
   }
 
   // The pair data of the kept pairs at the half-step positions, B and the
