@@ -200,11 +200,12 @@ struct RelaxationSpec {
 
 // ULSPH settings (solver.ulsph; seed 002 section 3.3, formulations.md section 3).
 struct UlsphSpec {
-  bool dual_time_stepping = true;  // advection steps of acoustic sub-steps | one criterion (every step rebuilds)
-  double advection_cfl = 0.2;      // dt_adv = advection_cfl h / max(U_ref, |v|max)
-  double reference_speed = 0;      // U_ref, m/s
-  bool refresh_pairs = true;       // pair data at every step's positions between searches (theory.md)
-  double xi = -1;                  // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
+  bool dual_time_stepping = true;   // advection steps of acoustic sub-steps | one criterion (every step rebuilds)
+  double advection_cfl = 0.2;       // dt_adv = advection_cfl h / max(U_ref, |v|max)
+  double reference_speed = 0;       // U_ref, m/s
+  bool refresh_pairs = true;        // pair data at every step's positions between searches (theory.md)
+  bool remove_plastic_rate = false;  // J2: radial return | the seed's rate without its plastic part first
+  double xi = -1;                   // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
 };
 
 struct SolverSpec {

@@ -245,6 +245,7 @@ SolverSpec read_solver(JsonNode s, int dim) {
     spec.ulsph.advection_cfl = u.number("advection_cfl", 0.2, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
     spec.ulsph.reference_speed = u.number("reference_speed", 0.0, Range::non_negative());
     spec.ulsph.refresh_pairs = u.boolean("refresh_pairs", true);
+    spec.ulsph.remove_plastic_rate = u.choice("j2_return", {"radial", "seed"}, "radial") == "seed";
     if (u.has("xi")) spec.ulsph.xi = u.number("xi", Range::positive());
     u.finish();
   } else {

@@ -385,7 +385,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   ulsph::HypoelasticJ2<Real> shear_law(size_t b) {
     const MaterialSpec& m = scene_.bodies[b].material;
     if (m.model == MaterialModel::j2)
-      return ulsph::HypoelasticJ2<Real>::plastic(Real(props(b).G), Real(m.yield_stress), Real(m.hardening_modulus));
+      return ulsph::HypoelasticJ2<Real>::plastic(Real(props(b).G), Real(m.yield_stress), Real(m.hardening_modulus),
+                                                 scene_.solver.ulsph.remove_plastic_rate);
     return ulsph::HypoelasticJ2<Real>::elastic(Real(props(b).G));
   }
 
