@@ -30,6 +30,14 @@ struct BodySearch {
   double smoothing_length;  // support radius = 2 h
 };
 
+// The squared search radius (2h)^2 in the positions' precision: the count
+// and every fill of a list must use this same value, or a borderline pair
+// is counted and not filled (or the reverse).
+template <class P>
+P support_radius2(double smoothing_length) {
+  return P(std::pow(2.0 * smoothing_length, 2));
+}
+
 // The grid over [lo, hi] with cells of edge `cell_size`, its keys from `first_key`.
 template <int D, class P = double>
 CellGrid<D, P> make_cell_grid(const double* lo, const double* hi, double cell_size, std::int64_t first_key = 0) {
@@ -134,7 +142,7 @@ PairIndex count_pairs(CellNeighborhood<D, P> hood, const std::vector<BodySearch>
                       DeviceVector<B, Index>& count, DeviceVector<B, PairIndex>& offsets) {
   count.assign(size_t(n), 0);
   for (const auto& b : bodies) {
-    hood.radius2 = P(std::pow(2.0 * b.smoothing_length, 2));
+    hood.radius2 = support_radius2<P>(b.smoothing_length);
     parallel_for<B>(b.range.begin, b.range.end, NeighborCountFunctor<D, P>{hood, raw(count)});
   }
   offsets.resize(size_t(n) + 1);

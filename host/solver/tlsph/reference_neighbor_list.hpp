@@ -74,7 +74,7 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
   list.gradient_sum.resize(size_t(n));
   if (with_beta) list.beta.resize(size_t(total));
   for (const auto& b : bodies) {
-    hood.radius2 = std::pow(2.0 * b.smoothing_length, 2);
+    hood.radius2 = support_radius2<double>(b.smoothing_length);
     ReferencePairFillFunctor<D, Real> fill{hood,
                                            WendlandC2<D, double>::make(b.smoothing_length),
                                            particles.template get<Real>(field::volume),

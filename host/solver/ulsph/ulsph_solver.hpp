@@ -20,6 +20,7 @@
 #pragma once
 #include <thrust/copy.h>
 #include <thrust/count.h>
+#include <thrust/fill.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,15 +38,6 @@
 #include "kernels/ulsph/step.hpp"
 
 namespace mfsd {
-
-namespace ulsph {
-template <class Real>
-struct FillScalar {
-  Real* p;
-  Real value;
-  MFSD_HD void operator()(Index i) const { p[i] = value; }
-};
-}  // namespace ulsph
 
 template <class B, int D, class Real>
 class UlsphSolver final : public ParticleSolver<B, D, Real> {
@@ -93,7 +85,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (has_plastic_body(scene_)) {
       particles_.template add<Real>(field::plastic_strain);  // a, the accumulated plastic strain
       particles_.template add<Real>(field::plastic_scale);
-      parallel_for<B>(n, ulsph::FillScalar<Real>{particles_.template get<Real>(field::plastic_scale), Real(1)});
+      Real* kappa = particles_.template get<Real>(field::plastic_scale);
+      thrust::fill(BackendTraits<B>::policy(), kappa, kappa + n, Real(1));
     }
     bool failure = false;
     for (const auto& b : scene_.bodies) failure = failure || b.material.failure_pressure > 0;
@@ -336,7 +329,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     stretch_.resize(size_t(pairs_));
     gradient_sum_.resize(size_t(n));
     for (const auto& s : search_) {
-      hood.radius2 = Real(4.0 * s.smoothing_length * s.smoothing_length);
+      hood.radius2 = support_radius2<Real>(s.smoothing_length);
       parallel_for<B>(
           s.range.begin, s.range.end,
           ulsph::CurrentPairFillFunctor<D, Real>{hood, WendlandC2<D, Real>::make(Real(s.smoothing_length)),
