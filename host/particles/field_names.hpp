@@ -50,4 +50,5 @@ inline constexpr const char* hourglass_acceleration = "hourglass_acceleration"; 
 inline constexpr const char* current_position = "current_position";              // x = X + u for the search
 inline constexpr const char* plastic_scale = "plastic_scale";                    // kappa of J2 bodies
 inline constexpr const char* failed = "failed";                                  // 1 once a particle failed
+inline constexpr const char* failed_output = "failed_output";                    // the same as a Real (outputs)
 }  // namespace mfsd::field

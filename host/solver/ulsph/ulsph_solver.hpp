@@ -105,6 +105,10 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
                         {"pressure", field::pressure},
                         {"density", field::density}};
     if (particles_.has(field::plastic_strain)) snapshot_fields_.emplace_back("plastic_strain", field::plastic_strain);
+    if (particles_.has(field::failed)) {
+      particles_.template add<Real>(field::failed_output);
+      snapshot_fields_.emplace_back("failed", field::failed_output);
+    }
 
     const std::vector<Index> where = this->locate();
     conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
@@ -267,6 +271,10 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
 
  private:
   void update_observables() override {
+    if (particles_.has(field::failed)) {
+      const unsigned char* f = particles_.template get<unsigned char>(field::failed);
+      thrust::copy(BackendTraits<B>::policy(), f, f + particles_.size(), real(field::failed_output));
+    }
     for (size_t b = 0; b < scene_.bodies.size(); ++b)
       parallel_for<B>(ranges_[b].begin, ranges_[b].end,
                       ulsph::ObservablesFunctor<D, Real>{mat(field::shear_stress), real(field::density),
