@@ -26,6 +26,7 @@ ALLOWED = [
     (r"mfsd::Notch<", "set-up: notches cut reference pairs (computed in double)"),
     (r"mfsd::Vec<[23], double>", "set-up: reference positions in double for the neighbour search"),
     (r"mfsd::EnergySums", "output time: energy sums accumulate in double (energies.csv balance)"),
+    (r"mfsd::ulsph::EnergySums", "output time: ULSPH energy sums accumulate in double (energies.csv)"),
     (r"mfsd::ReadScalar<", "output time: the mean hourglass indicator, summed in double"),
     (r"policy_hub<double, ", "second pass of an output-time double sum (its first pass names its functor)"),
 ]
