@@ -99,6 +99,7 @@ struct RefreshHalfStepFunctor {
   const Vec<D, Real>* velocity;
   Real* density_out;  // rho_i after the half step: not pairs.density, whose neighbours' values V_j = m_j / rho_j
                       // reads while the pass runs (the caller copies it back)
+  Real* pair_density;  // rho_i of the pair data (the forces divide by it)
   Mat<D, Real>* correction;
   Real min_determinant;
   Real half_dt;
@@ -109,6 +110,7 @@ struct RefreshHalfStepFunctor {
     correction[i] = d >= min_determinant ? inverse(A) : Mat<D, Real>::identity();  // seed 002 eq. 21
     const PairList<D, Real> row{pairs.offsets, pairs.neighbor, pairs.grad, pairs.stretch, pairs.gradient_sum, nullptr};
     const Real rho = pairs.density[i];
+    pair_density[i] = rho;
     density_out[i] = rho + half_dt * density_rate(row, velocity, rho, i);  // seed 002 eq. 14
   }
 };

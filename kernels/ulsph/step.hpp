@@ -103,7 +103,7 @@ template <int D, class Real, class Variant>
 struct ForceFunctor {
   PairList<D, Real> pairs;
   const Vec<D, Real>* velocity;
-  const Real* density;
+  const Real* density;  // rho_i the pair data were formed with (V_i = m_i/rho_i in grad_ji): momentum to round-off
   const Real* pressure;
   const Mat<D, Real>* shear_stress;
   const Mat<D, Real>* velocity_gradient;

@@ -12,9 +12,15 @@
             with dual stepping (pair data formed every step, and frozen over the
             advection step as in the seed), and the same plate in TLSPH
             (neo-Hookean, genog); the corner's distance from the centre.
+  rings     colliding rubber rings 2-D (configs/colliding_rings_ulsph_2d.json)
+            at dp = 2, 1, 0.5 mm and hollow balls 3-D
+            (configs/colliding_balls_ulsph_3d.json) at dp = 3, 2 mm: kinetic,
+            stored and total energy over time, the momentum error, the rebound
+            (left body's momentum after / before) against seed 002 (2-D:
+            65.88 -> 56.74 per ring, 3-D: 8.27 -> 8.16).
 
 Writes docs/validation/ulsph_<study>.json and .png.
-Usage: scripts/validation/ulsph.py plate|spinning [--res 10 20] [--threads N] [--reuse]
+Usage: scripts/validation/ulsph.py plate|spinning|rings [--res 10 20] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -118,7 +124,42 @@ def spinning(args):
     m.write_study(os.path.join(DOCS, "ulsph_spinning"), result, fig)
 
 
+def rings(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cases = [("rings 2-D", "configs/colliding_rings_ulsph_2d.json", dp, (65.88, 56.74)) for dp in (0.002, 0.001, 0.0005)]
+    cases += [("balls 3-D", "configs/colliding_balls_ulsph_3d.json", dp, (8.27, 8.16)) for dp in (0.003, 0.002)]
+    result = {"configs": sorted({c[1] for c in cases}), "machine": m.machine(), "cases": []}
+    fig, ax = plt.subplots(1, 2, figsize=(13, 4.5))
+    for (name, config, dp, seed), a in [(c, ax[0] if c[0].startswith("rings") else ax[1]) for c in cases]:
+        out = os.path.join(OUT, f"{name.split()[0]}_dp{dp}")
+        _, e, timing = m.run_and_read(config, {"constants.dp": dp, "output.vtu": "false", "output.interval": 2e-4},
+                                      out, args.threads, args.reuse)
+        t, total = e["time"], e["total"]
+        p0 = e["left.momentum.x"][0]
+        drift = max(abs(px) + abs(py) for px, py in zip(e["momentum.x"], e["momentum.y"])) / p0
+        case = {"case": name, "dp": dp, "particles": timing.get("particles"), "total_start": total[0],
+                "total_end": total[-1], "loss": 1 - total[-1] / total[0], "seed_loss": 1 - seed[1] / seed[0],
+                "least_total": min(total) / total[0], "momentum_error": drift,
+                "rebound": -e["left.momentum.x"][-1] / p0, "wall_seconds": timing.get("wall_seconds")}
+        result["cases"].append(case)
+        print(f"{name} dp={dp}: total {total[0]:.3f} -> {total[-1]:.3f} ({-100 * case['loss']:+.1f} %, seed "
+              f"{-100 * case['seed_loss']:+.1f} %), rebound {case['rebound']:.3f}, momentum error {drift:.1e}")
+        line, = a.plot(t, [x / total[0] for x in total], label=f"total, dp = {dp * 1e3:g} mm")
+        a.plot(t, [x / total[0] for x in e["kinetic"]], "--", color=line.get_color(), lw=0.8)
+        a.plot(t, [x / total[0] for x in e["strain"]], ":", color=line.get_color(), lw=0.8)
+    for a, (name, seed) in zip(ax, [("rings 2-D", (65.88, 56.74)), ("balls 3-D", (8.27, 8.16))]):
+        a.axhline(seed[1] / seed[0], color="k", lw=0.8, label=f"seed 002 end of run ({seed[0]} -> {seed[1]})")
+        a.set_title(f"{name}: total (solid), kinetic (dashed), stored (dotted)")
+        a.set_xlabel("t [s]")
+        a.set_ylabel("energy / initial total")
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_rings"), result, fig)
+
+
 if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
     args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
-    {"plate": plate, "spinning": spinning}.get(study, lambda a: sys.exit(__doc__))(args)
+    {"plate": plate, "spinning": spinning, "rings": rings}.get(study, lambda a: sys.exit(__doc__))(args)
