@@ -18,8 +18,12 @@ so the length is the extent z_max - z_min + dp of the particles (each stands
 for a cube of side dp; the initial value is L) and the radius r_max + dp/2;
 the centre-to-centre values are recorded as well.
 
+--method ulsph runs round and square in updated-Lagrangian SPH with GNOG
+(seed 002 sections 5.6-5.7: hypo-elastic J2, radial return, h = 1.3 dp,
+CFL 0.4, no damping) instead; the results go to taylor_bars_<case>_ulsph.
+
 Writes docs/validation/taylor_bars_<case>.json and .png.
-Usage: scripts/validation/taylor_bars.py round|square|square_hard|2d [--res 8 12] [--threads N] [--reuse] [--out STEM]
+Usage: scripts/validation/taylor_bars.py round|square|square_hard|2d [--method tlsph|ulsph] [--res 8 12] [--threads N] [--reuse] [--out STEM]
 """
 import os
 import sys
@@ -49,16 +53,24 @@ def final_shape(outdir, dim, dp):
             "length_centres": float(up.max() - up.min()), "radius_centres": float(r.max()),
             "half_width": float(np.abs(x[:, 0]).max() + dp / 2), "lift_off": float(up.min() - dp / 2),
             "max_plastic_strain": float(np.max(d["plastic_strain"])),
-            "max_von_mises_strain": float(np.max(d["von_mises_strain"])),
-            "hourglass_max": float(np.max(d["hourglass"])), "points": x,
+            "max_von_mises_strain": float(np.max(d["von_mises_strain"])) if "von_mises_strain" in d else None,
+            "hourglass_max": float(np.max(d["hourglass"])) if "hourglass" in d else None, "points": x,
             "reference": x - np.asarray(d["displacement"], dtype=float),
-            "hourglass": np.asarray(d["hourglass"], dtype=float)}
+            "hourglass": np.asarray(d["hourglass"], dtype=float) if "hourglass" in d else None}
 
 
 ARRAYS = ("points", "reference", "hourglass")  # final_shape's per-particle fields
 
 
+# The same bar in ULSPH (seed 002): the TLSPH-only keys of the configs removed.
+ULSPH = {"solver.method": "ulsph", "solver.hourglass": "gnog", "solver.h_over_dp": 1.3, "solver.cfl": 0.4,
+         "solver.kernel_correction_in_force": "null", "solver.damping": "null"}
+METHOD = "tlsph"
+
+
 def run_case(config, tag, sets, dim, dp, threads, reuse):
+    if METHOD == "ulsph":
+        sets, tag = {**sets, **ULSPH}, tag + "_ulsph"
     outdir = os.path.join(OUT, tag)
     p, e, timing = m.run_and_read(config, sets, outdir, threads, reuse)
     s = final_shape(outdir, dim, dp)
@@ -265,9 +277,18 @@ def main():
         __doc__, "resolutions (R/dp, H/dp)",
         "stem of the result files in docs/validation (default taylor_bars_<case>; "
         "e.g. a bench resolution on its own: --res 16 --out taylor_bars_round_R16)",
-        lambda ap: ap.add_argument("case", choices=["round", "square", "square_hard", "2d"]))
+        lambda ap: (ap.add_argument("case", choices=["round", "square", "square_hard", "2d"]),
+                    ap.add_argument("--method", choices=["tlsph", "ulsph"], default="tlsph")))
+    global METHOD
+    METHOD = args.method
+    if METHOD == "ulsph" and args.case not in ("round", "square"):
+        sys.exit("--method ulsph: round or square")
     res, fig = {"round": round_bar, "square": square_bar, "square_hard": square_hard, "2d": bar_2d}[args.case](args)
-    m.write_study(os.path.join(DOCS, args.out or f"taylor_bars_{args.case}"), res, fig)
+    if METHOD == "ulsph":
+        res["method"] = "ulsph (seed 002): " + ", ".join(f"{k}={v}" for k, v in ULSPH.items())
+        fig.suptitle(fig._suptitle.get_text() + " -- ULSPH with GNOG")
+    suffix = "_ulsph" if METHOD == "ulsph" else ""
+    m.write_study(os.path.join(DOCS, args.out or f"taylor_bars_{args.case}{suffix}"), res, fig)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,9 @@
             with dual stepping (pair data formed every step, and frozen over the
             advection step as in the seed), and the same plate in TLSPH
             (neo-Hookean, genog); the corner's distance from the centre.
+  long      the oscillating plate over 30+ oscillations (v_f = 0.05,
+            H/dp = 10, 8.5 s; seed 002 Fig. 5): the period and amplitude of
+            every oscillation and the energy at the end.
   rings     colliding rubber rings 2-D (configs/colliding_rings_ulsph_2d.json)
             at dp = 2, 1, 0.5 mm and hollow balls 3-D
             (configs/colliding_balls_ulsph_3d.json) at dp = 3, 2 mm: kinetic,
@@ -20,7 +23,7 @@
             65.88 -> 56.74 per ring, 3-D: 8.27 -> 8.16).
 
 Writes docs/validation/ulsph_<study>.json and .png.
-Usage: scripts/validation/ulsph.py plate|spinning|rings [--res 10 20] [--threads N] [--reuse]
+Usage: scripts/validation/ulsph.py plate|spinning|rings|long [--res 10 20] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -124,6 +127,49 @@ def spinning(args):
     m.write_study(os.path.join(DOCS, "ulsph_spinning"), result, fig)
 
 
+def long_plate(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    res = (args.res or [10])[0]
+    out = os.path.join(OUT, f"plate_long_H{res}")
+    probes, energies, timing = m.run_and_read(
+        "configs/oscillating_plate_ulsph_2d.json",
+        {"constants.H_over_dp": res, "solver.end_time": 8.5, "output.interval": 0.5, "output.probe_interval": 5e-4},
+        out, args.threads, args.reuse)
+    t, y = probes["time"], probes["tip.position.y"]
+    c = m.crossings(t, y)
+    periods = [c[k + 2] - c[k] for k in range(0, len(c) - 2, 2)]
+    amplitudes = []
+    for k in range(0, len(c) - 2, 2):
+        seg = [abs(yy - y[0]) for tt, yy in zip(t, y) if c[k] <= tt <= c[k + 2]]
+        amplitudes.append(max(seg))
+    e = [a + b for a, b in zip(energies["kinetic"], energies["strain"])]
+    result = {"config": "configs/oscillating_plate_ulsph_2d.json", "machine": m.machine(), "H_over_dp": res,
+              "oscillations": len(periods), "periods": periods, "amplitudes": amplitudes,
+              "period_first": periods[0], "period_last": periods[-1], "amplitude_ratio_last_first":
+              amplitudes[-1] / amplitudes[0], "energy_end": e[-1] / e[0],
+              "wall_seconds": timing.get("wall_seconds"), "steps": timing.get("steps")}
+    print(f"{len(periods)} oscillations: period {periods[0]:.4f} -> {periods[-1]:.4f}, amplitude x "
+          f"{amplitudes[-1] / amplitudes[0]:.3f}, energy x {e[-1] / e[0]:.3f}")
+    fig, ax = plt.subplots(1, 2, figsize=(13, 4.5))
+    ax[0].plot(t, y, lw=0.6)
+    ax[0].set_xlabel("t [s]")
+    ax[0].set_ylabel("tip y [m]")
+    ax[0].set_title(f"{len(periods)} oscillations, H/dp = {res}, v_f = 0.05")
+    ax[1].plot(range(1, len(periods) + 1), periods, "o-", label="period [s]")
+    ax[1].axhline(0.272, color="k", lw=0.8, label="seed 002 Table 1 (first period)")
+    ax[1].set_xlabel("oscillation")
+    ax[1].set_ylabel("period [s]")
+    a2 = ax[1].twinx()
+    a2.plot(range(1, len(amplitudes) + 1), amplitudes, "s--", color="C1", label="amplitude [m]")
+    a2.set_ylabel("amplitude [m]")
+    ax[1].legend(loc="lower left")
+    a2.legend(loc="lower right")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_plate_long"), result, fig)
+
+
 def rings(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -162,4 +208,4 @@ def rings(args):
 if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
     args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
-    {"plate": plate, "spinning": spinning, "rings": rings}.get(study, lambda a: sys.exit(__doc__))(args)
+    {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate}.get(study, lambda a: sys.exit(__doc__))(args)
