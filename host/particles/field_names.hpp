@@ -44,6 +44,9 @@ inline constexpr const char* phase_field_next = "phase_field_next";    // s_{n+1
 inline constexpr const char* mass = "mass";                                      // m = rho0 V0
 inline constexpr const char* density = "density";                                // rho
 inline constexpr const char* density_next = "density_next";                      // rho of a pass that reads rho
+inline constexpr const char* dissipated_work = "dissipated_work";  // J taken by the Riemann dissipation and GNOG
+inline constexpr const char* numerical_acceleration = "numerical_acceleration";  // Riemann + GNOG part of a
+inline constexpr const char* plastic_work = "plastic_work";        // J of plastic work (ULSPH J2)
 inline constexpr const char* pair_density = "pair_density";  // rho when the pair data (V_j = m_j/rho_j) were formed
 inline constexpr const char* pressure = "pressure";                              // p = K (rho/rho0 - 1)
 inline constexpr const char* velocity_gradient = "velocity_gradient";            // L_ab = dv_a/dx_b

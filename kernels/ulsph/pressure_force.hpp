@@ -20,10 +20,11 @@ namespace mfsd::ulsph {
 
 template <int D, class Real>
 MFSD_HD inline Vec<D, Real> pressure_acceleration(const PairList<D, Real>& pairs, const Vec<D, Real>* velocity,
-                                                  const Real* pressure, Real rho_i, Real impedance, Index i) {
+                                                  const Real* pressure, Real rho_i, Real impedance, Index i,
+                                                  Vec<D, Real>* riemann = nullptr) {
   const Real p_i = pressure[i];
   const Vec<D, Real> v_i = velocity[i];
-  Vec<D, Real> sum = Vec<D, Real>::zero();
+  Vec<D, Real> sum = Vec<D, Real>::zero(), dissipation = Vec<D, Real>::zero();
   for (PairIndex k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k) {
     const Index j = pairs.neighbor[k];
     const Index ahead = pairs.neighbor[k + kPairPrefetchDistance];
@@ -34,9 +35,11 @@ MFSD_HD inline Vec<D, Real> pressure_acceleration(const PairList<D, Real>& pairs
     const Real inv_g = g2 > Real(0) ? Real(1) / math::sqrt(g2) : Real(0);  // 0 only for coincident particles
     const Real u = dot(v_i - velocity[j], g) * inv_g;                      // -(v_i - v_j) . e_ij
     // seed 002 eq. 15: -(p_i + p_j) grad_ij (pressure) - Z u grad_ij (Riemann dissipation)
-    sum += g * (-(p_i + pressure[j]) - impedance * u);
+    sum += g * (-(p_i + pressure[j]));
+    dissipation -= g * (impedance * u);
   }
-  return sum / rho_i;  // seed 002 eq. 15: 1/rho_i
+  if (riemann) *riemann = dissipation / rho_i;  // the dissipative part alone (its work: energies.csv `damping`)
+  return (sum + dissipation) / rho_i;           // seed 002 eq. 15: 1/rho_i
 }
 
 // acceleration[i] = a_p,i (written, not added: the first term of the force stage;

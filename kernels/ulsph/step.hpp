@@ -56,14 +56,32 @@ struct DisplacementHalfStepFunctor {
   MFSD_HD void operator()(Index i) const { displacement[i] += velocity[i] * half_dt; }
 };
 
+// The work of the numerical forces (Riemann dissipation and GNOG penalty,
+// a_num) over one position half step, m a_num . v dt/2, taken from the
+// particle's account: position Verlet moves it by dt/2 (v^n + v^{n+1}) over
+// the step, v^{n+1} after contact and conditions (a clamped particle does not
+// move, whatever its a_num).
+template <int D, class Real>
+struct NumericalWork {
+  Vec<D, Real>* numerical_acceleration;
+  const Real* mass;
+  Real* dissipated_work;
+  Real half_dt;
+  MFSD_HD void operator()(Index i, const Vec<D, Real>& v) const {
+    dissipated_work[i] -= mass[i] * half_dt * dot(numerical_acceleration[i], v);
+  }
+};
+
 // The second half step, reduced to the time step's maxima and the health
 // check of the particle (kernels/core/step_statistics.hpp).
 template <int D, class Real>
 struct SecondHalfStepFunctor {
   HalfStepFunctor<D, Real> half;
   StepStatisticsFunctor<D, Real> statistics;
+  NumericalWork<D, Real> work;  // its second half, at v^{n+1}
   MFSD_HD StepStatistics<Real> operator()(Index i) const {
     half(i);
+    work(i, half.velocity[i]);
     return statistics(i);
   }
 };
@@ -78,8 +96,10 @@ struct StressFunctor {
   Real* pressure;
   Mat<D, Real>* velocity_gradient;
   Mat<D, Real>* shear_stress;
-  Real* hardening;  // a of J2 bodies, else null
-  Real* kappa;      // plastic scale of J2 bodies, else null
+  Real* hardening;     // a of J2 bodies, else null
+  Real* kappa;         // plastic scale of J2 bodies, else null
+  Real* plastic_work;  // J2 bodies: += V (sigma_y + H a) da, else null
+  const Real* mass;
   LinearEquationOfState<Real> eos;
   Failure failure;
   HypoelasticJ2<Real> model;
@@ -92,7 +112,13 @@ struct StressFunctor {
     const ShearStressUpdate<D, Real> r =
         update_shear_stress(shear_stress[i], L, hardening ? hardening[i] : Real(0), model, dt);
     shear_stress[i] = r.shear_stress;
-    if (hardening) hardening[i] = r.hardening;
+    if (hardening) {
+      // tau : d eps_p = |tau| dgamma = sqrt(2/3) R dgamma = (sigma_y + H a) da per unit volume
+      if (plastic_work)
+        plastic_work[i] += mass[i] / density[i] *
+                           (model.yield_stress + model.hardening_modulus * r.hardening) * (r.hardening - hardening[i]);
+      hardening[i] = r.hardening;
+    }
     if (kappa) kappa[i] = r.kappa;
   }
 };
@@ -110,16 +136,19 @@ struct ForceFunctor {
   const Real* kappa;                     // null: kappa = 1
   Vec<D, Real>* hourglass_acceleration;  // a_h (null with GnogNone)
   Vec<D, Real>* acceleration;
-  Real impedance;  // Z = rho0 c0
-  Real xi;         // GNOG coefficient of the body
+  NumericalWork<D, Real> work;  // writes a_num (its numerical_acceleration is written here)
+  Real impedance;               // Z = rho0 c0
+  Real xi;                // GNOG coefficient of the body
   Real shear_modulus;
   Real dt;
   Vec<D, Real> gravity;
 
   MFSD_HD void operator()(Index i) const {
     const Real rho = density[i];
-    Vec<D, Real> a = pressure_acceleration(pairs, velocity, pressure, rho, impedance, i);  // seed 002 eq. 15
-    a += shear_acceleration(pairs, shear_stress, rho, i);                                  // seed 002 eq. 18
+    Vec<D, Real> a_d;  // the Riemann dissipation's part of a
+    Vec<D, Real> a = pressure_acceleration(pairs, velocity, pressure, rho, impedance, i, &a_d);  // seed 002 eq. 15
+    a += shear_acceleration(pairs, shear_stress, rho, i);                                        // seed 002 eq. 18
+    Vec<D, Real> a_numerical = a_d;
     if constexpr (!std::is_same<Variant, GnogNone>::value) {
       Vec<D, Real> a_h = hourglass_acceleration[i];
       if constexpr (std::is_same<Variant, GnogAngularMomentumConserving>::value)
@@ -128,8 +157,11 @@ struct ForceFunctor {
              dt;  // seed 002 eq. 29: accumulated
       hourglass_acceleration[i] = a_h;
       a += a_h;
+      a_numerical += a_h;
     }
     acceleration[i] = a + gravity;
+    work.numerical_acceleration[i] = a_numerical;
+    work(i, velocity[i]);  // the first half of the step's work, at v^n (NumericalWork)
   }
 };
 

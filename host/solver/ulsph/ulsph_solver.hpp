@@ -83,7 +83,10 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     particles_.template add<Real>(field::jacobian);
     if (scene_.solver.hourglass != HourglassControl::none)
       particles_.template add<Vec<D, Real>>(field::hourglass_acceleration);
+    particles_.template add<Real>(field::dissipated_work);                 // zero
+    particles_.template add<Vec<D, Real>>(field::numerical_acceleration);  // a_num of the step
     if (has_plastic_body(scene_)) {
+      particles_.template add<Real>(field::plastic_work);    // zero
       particles_.template add<Real>(field::plastic_strain);  // a, the accumulated plastic strain
       particles_.template add<Real>(field::plastic_scale);
       Real* kappa = particles_.template get<Real>(field::plastic_scale);
@@ -189,7 +192,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     std::vector<ResultSlot<BoundingBox<D, Real>>> box_slots;
     run("advance", [&] {
       ulsph::SecondHalfStepFunctor<D, Real> f{{pairs, velocity(), real(field::density), displacement(), half_dt},
-                                              statistics_functor()};
+                                              statistics_functor(),
+                                              numerical_work(Real(dt))};
       stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
                                    StepStatisticsCombine<Real>{});
       // The boxes of the next search, should the next step rebuild.
@@ -233,6 +237,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       be.kinetic = s.kinetic;
       be.strain = s.strain;
       be.gravity_work = s.gravity - gravity_at_start_[b];
+      be.plastic = s.plastic;
+      be.damping = s.dissipated;
       this->add_shared_work(b, be);
       for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
@@ -420,6 +426,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
                                                          mat(field::shear_stress),
                                                          plastic ? real(field::plastic_strain) : nullptr,
                                                          plastic ? real(field::plastic_scale) : nullptr,
+                                                         plastic ? real(field::plastic_work) : nullptr,
+                                                         real(field::mass),
                                                          eos,
                                                          failure,
                                                          shear_law(b),
@@ -455,6 +463,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
           plastic ? real(field::plastic_scale) : nullptr,
           hg == HourglassControl::none ? nullptr : particles_.template get<Vec<D, Real>>(field::hourglass_acceleration),
           acceleration(),
+          numerical_work(dt),
           Real(m.density * props(b).c0),  // Z = rho0 c0 (formulations.md 3)
           Real(xi),
           Real(props(b).G),
@@ -475,9 +484,23 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
     return transform_reduce<B>(
         ranges_[b].begin, ranges_[b].end,
-        ulsph::EnergyFunctor<D, Real>{velocity(), displacement(), real(field::mass), real(field::density),
-                                      real(field::pressure), mat(field::shear_stress), props(b).K, props(b).G, g},
-        ulsph::EnergySums{0, 0, {0, 0, 0}, 0}, ulsph::EnergySumsPlus{});
+        ulsph::EnergyFunctor<D, Real>{velocity(),
+                                      displacement(),
+                                      real(field::mass),
+                                      real(field::density),
+                                      real(field::pressure),
+                                      mat(field::shear_stress),
+                                      real(field::dissipated_work),
+                                      optional(field::plastic_work),
+                                      props(b).K,
+                                      props(b).G,
+                                      g},
+        ulsph::EnergySums{0, 0, {0, 0, 0}, 0, 0, 0}, ulsph::EnergySumsPlus{});
+  }
+
+  ulsph::NumericalWork<D, Real> numerical_work(Real dt) {
+    return {particles_.template get<Vec<D, Real>>(field::numerical_acceleration), real(field::mass),
+            real(field::dissipated_work), Real(0.5) * dt};
   }
 
   StepStatisticsFunctor<D, Real> statistics_functor() {
