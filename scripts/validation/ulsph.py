@@ -15,6 +15,11 @@
   long      the oscillating plate over 30+ oscillations (v_f = 0.05,
             H/dp = 10, 8.5 s; seed 002 Fig. 5): the period and amplitude of
             every oscillation and the energy at the end.
+  column    bending column 3-D (configs/bending_column_ulsph_3d.json,
+            seed 002 section 5.2) at H/dp = --res (default 6 12) to 2 s,
+            against the TLSPH column (configs/bending_column_3d.json, genog,
+            as shipped) at the same resolutions: z(t) of the top centre S,
+            its first minimum, and kinetic + stored energy.
   rings     colliding rubber rings 2-D (configs/colliding_rings_ulsph_2d.json)
             at dp = 2, 1, 0.5 mm and hollow balls 3-D
             (configs/colliding_balls_ulsph_3d.json) at dp = 3, 2 mm: kinetic,
@@ -23,7 +28,7 @@
             65.88 -> 56.74 per ring, 3-D: 8.27 -> 8.16).
 
 Writes docs/validation/ulsph_<study>.json and .png.
-Usage: scripts/validation/ulsph.py plate|spinning|rings|long [--res 10 20] [--threads N] [--reuse]
+Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column [--res 10 20] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -170,6 +175,50 @@ def long_plate(args):
     m.write_study(os.path.join(DOCS, "ulsph_plate_long"), result, fig)
 
 
+def first_minimum(t, z):
+    for k in range(1, len(z) - 1):
+        if z[k] < z[k - 1] and z[k] <= z[k + 1] and t[k] > 0.05:
+            return t[k], z[k]
+    return float("nan"), float("nan")
+
+
+def column(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    res = args.res or [6, 12]
+    result = {"configs": ["configs/bending_column_ulsph_3d.json", "configs/bending_column_3d.json"],
+              "machine": m.machine(), "cases": []}
+    fig, ax = plt.subplots(1, 2, figsize=(13, 4.5))
+    for r in res:
+        for method, config in (("ULSPH gnog", "configs/bending_column_ulsph_3d.json"),
+                               ("TLSPH genog", "configs/bending_column_3d.json")):
+            out = os.path.join(OUT, f"column_{method.split()[0].lower()}_H{r}")
+            probes, e, timing = m.run_and_read(config, {"constants.H_over_dp": r, "solver.end_time": 2.0,
+                                                        "output.vtu": "false", "output.interval": 0.02},
+                                               out, args.threads, args.reuse)
+            t, z = probes["time"], probes["S.position.z"]
+            tmin, zmin = first_minimum(t, z)
+            total = [a + b for a, b in zip(e["kinetic"], e["strain"])]
+            case = {"method": method, "H_over_dp": r, "particles": timing.get("particles"),
+                    "steps": timing.get("steps"), "wall_seconds": timing.get("wall_seconds"),
+                    "first_minimum_time": tmin, "first_minimum_z": zmin, "energy_end": total[-1] / total[0]}
+            result["cases"].append(case)
+            print(f"{method} H/dp={r}: first minimum of z(S) {zmin:.3f} m at {tmin:.3f} s; "
+                  f"kinetic + stored at 2 s: {case['energy_end']:.3f} of the start")
+            style = "-" if method.startswith("ULSPH") else "--"
+            ax[0].plot(t, z, style, label=f"{method}, H/dp = {r}")
+            ax[1].plot(e["time"], [x / total[0] for x in total], style, label=f"{method}, H/dp = {r}")
+    ax[0].set_ylabel("z of S [m]")
+    ax[1].set_ylabel("(kinetic + stored) / start")
+    for a in ax:
+        a.set_xlabel("t [s]")
+        a.legend(fontsize=8)
+    fig.suptitle("bending column 3-D, v0 = 10 m/s (seed 002 section 5.2 against TLSPH)")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_column"), result, fig)
+
+
 def rings(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -208,4 +257,4 @@ def rings(args):
 if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
     args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
-    {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate}.get(study, lambda a: sys.exit(__doc__))(args)
+    {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate, "column": column}.get(study, lambda a: sys.exit(__doc__))(args)
