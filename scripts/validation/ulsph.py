@@ -20,6 +20,11 @@
             against the TLSPH column (configs/bending_column_3d.json, genog,
             as shipped) at the same resolutions: z(t) of the top centre S,
             its first minimum, and kinetic + stored energy.
+  projectile  high-velocity impact 2-D (configs/projectile_impact_ulsph_2d.json,
+            seed 002 section 5.8) at dp = 0.4, 0.2, 0.1 mm: the particles at
+            8 us (upper half, as the seed's Fig. 29), the projectile's
+            residual velocity, the debris cloud's front, the hole in the plate,
+            momentum and the energy split.
   rings     colliding rubber rings 2-D (configs/colliding_rings_ulsph_2d.json)
             at dp = 2, 1, 0.5 mm and hollow balls 3-D
             (configs/colliding_balls_ulsph_3d.json) at dp = 3, 2 mm: kinetic,
@@ -28,7 +33,7 @@
             65.88 -> 56.74 per ring, 3-D: 8.27 -> 8.16).
 
 Writes docs/validation/ulsph_<study>.json and .png.
-Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column [--res 10 20] [--threads N] [--reuse]
+Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column|projectile [--res 10 20] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -219,6 +224,53 @@ def column(args):
     m.write_study(os.path.join(DOCS, "ulsph_column"), result, fig)
 
 
+def projectile(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    import vtu
+    config = "configs/projectile_impact_ulsph_2d.json"
+    result = {"config": config, "machine": m.machine(), "cases": []}
+    spacings = (0.0004, 0.0002, 0.0001)
+    fig, ax = plt.subplots(1, len(spacings), figsize=(5 * len(spacings), 4.5))
+    for a, dp in zip(ax, spacings):
+        out = os.path.join(OUT, f"projectile_dp{dp}")
+        _, e, timing = m.run_and_read(config, {"constants.dp": dp}, out, args.threads, args.reuse)
+        t_end, path = vtu.snapshots(out)[-1]
+        d = vtu.read_vtu(path)
+        x, body = np.asarray(d["points"]), np.asarray(d["body"])
+        v = np.asarray(d["velocity"])
+        proj = body == 0
+        plate_now = x[~proj]
+        # The hole: the smallest |y| of a plate particle still within the plate's thickness.
+        in_plate = (plate_now[:, 0] > -dp) & (plate_now[:, 0] < 0.002 + dp)
+        hole = float(np.min(np.abs(plate_now[in_plate, 1])))
+        p0 = e["projectile.momentum.x"][0]
+        drift = max(abs(px - e["momentum.x"][0]) for px in e["momentum.x"]) / p0
+        total0 = e["balance"][0]
+        case = {"dp": dp, "particles": timing.get("particles"), "steps": timing.get("steps"),
+                "wall_seconds": timing.get("wall_seconds"), "t": t_end,
+                "projectile_residual_velocity": float(np.mean(v[proj, 0])),
+                "debris_front_x": float(x[:, 0].max()), "hole_half_height": hole,
+                "momentum_error": drift, "plastic_share": e["plastic"][-1] / total0,
+                "numerical_share": e["damping"][-1] / total0, "balance_end": e["balance"][-1] / total0}
+        result["cases"].append(case)
+        print(f"dp = {dp * 1e3:g} mm: residual velocity {case['projectile_residual_velocity']:.0f} m/s, debris front "
+              f"{1e3 * case['debris_front_x']:.2f} mm, hole half-height {1e3 * hole:.2f} mm, plastic "
+              f"{case['plastic_share']:.3f}, numerical {case['numerical_share']:.3f}, balance {case['balance_end']:.4f}, "
+              f"momentum error {drift:.1e}")
+        up = x[:, 1] >= 0
+        a.scatter(1e3 * x[up, 0], 1e3 * x[up, 1], s=0.2, c=np.asarray(d["von_mises"])[up], cmap="jet")
+        a.set_aspect("equal")
+        a.set_xlabel("x [mm]")
+        a.set_ylabel("y [mm]")
+        a.set_title(f"dp = {dp * 1e3:g} mm, t = {1e6 * t_end:.1f} us (von Mises)", fontsize=9)
+    fig.suptitle("aluminium disc at 3100 m/s through a 2 mm plate (seed 002 section 5.8), upper half")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_projectile"), result, fig)
+
+
 def rings(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -257,4 +309,5 @@ def rings(args):
 if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
     args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
-    {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate, "column": column}.get(study, lambda a: sys.exit(__doc__))(args)
+    {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate, "column": column,
+     "projectile": projectile}.get(study, lambda a: sys.exit(__doc__))(args)
