@@ -25,6 +25,11 @@
             8 us (upper half, as the seed's Fig. 29), the projectile's
             residual velocity, the debris cloud's front, the hole in the plate,
             momentum and the energy split.
+  pin       striker pin fuse 3-D (configs/striker_pin_ulsph_3d.json, seed 002
+            section 5.9) at dp = 0.4 mm with v0 = 200 and 400 m/s and at
+            dp = 0.2 mm with 400 m/s: the pairs of plate particles within 2h
+            across the two groove lines (0: the centre piece is cut out),
+            the failed particles, the mid-plane particles at the end.
   rings     colliding rubber rings 2-D (configs/colliding_rings_ulsph_2d.json)
             at dp = 2, 1, 0.5 mm and hollow balls 3-D
             (configs/colliding_balls_ulsph_3d.json) at dp = 3, 2 mm: kinetic,
@@ -33,7 +38,7 @@
             65.88 -> 56.74 per ring, 3-D: 8.27 -> 8.16).
 
 Writes docs/validation/ulsph_<study>.json and .png.
-Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column|projectile [--res 10 20] [--threads N] [--reuse]
+Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column|projectile|pin [--res 10 20] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -271,6 +276,75 @@ def projectile(args):
     m.write_study(os.path.join(DOCS, "ulsph_projectile"), result, fig)
 
 
+def components(x, reach):
+    """Labels of the connected components of the graph joining particles
+    closer than `reach` (chunked brute-force distances, min-label propagation)."""
+    import numpy as np
+    n = len(x)
+    ii, jj = [], []
+    for k in range(0, n, 500):
+        d2 = ((x[k:k + 500, None, :] - x[None, :, :]) ** 2).sum(axis=2)
+        a, b = np.nonzero(d2 < reach * reach)
+        ii.append(a + k)
+        jj.append(b)
+    i, j = np.concatenate(ii), np.concatenate(jj)
+    label = np.arange(n)
+    while True:
+        new = label.copy()
+        np.minimum.at(new, i, label[j])
+        if np.array_equal(new, label):
+            return label
+        label = new
+
+
+def centre_cut_out(x, X, reach):
+    """Whether the plate's centre (|X| < 1 mm) is joined to its clamped ends
+    (|X| > 8 mm) by no chain of particles closer than `reach`."""
+    import numpy as np
+    label = components(x, reach)
+    return not (set(label[np.abs(X) < 0.001]) & set(label[np.abs(X) > 0.008]))
+
+
+def pin(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    import vtu
+    config = "configs/striker_pin_ulsph_3d.json"
+    cases = [(0.0004, 200), (0.0004, 400), (0.0002, 400)]
+    result = {"config": config, "machine": m.machine(), "groove_x": 0.003, "cases": []}
+    fig, ax = plt.subplots(1, len(cases), figsize=(5.5 * len(cases), 4))
+    for a, (dp, v0) in zip(ax, cases):
+        out = os.path.join(OUT, f"pin_dp{dp}_v{v0}")
+        _, e, timing = m.run_and_read(config, {"constants.dp": dp, "constants.v0": v0}, out, args.threads, args.reuse)
+        history = []
+        for t, path in vtu.snapshots(out):
+            d = vtu.read_vtu(path)
+            plate = np.asarray(d["body"]) == 0
+            x = np.asarray(d["points"])[plate]
+            X = x - np.asarray(d["displacement"])[plate]
+            history.append((t, centre_cut_out(x, X[:, 0], 2 * 1.3 * dp), int(np.asarray(d["failed"])[plate].sum())))
+        cut = next((t for t, c, _ in history if c), None)
+        case = {"dp": dp, "v0": v0, "particles": timing.get("particles"), "steps": timing.get("steps"),
+                "wall_seconds": timing.get("wall_seconds"), "centre_cut_out": [[t, c] for t, c, _ in history],
+                "failed_plate_particles": history[-1][2], "cut_out_by": cut}
+        result["cases"].append(case)
+        print(f"dp = {dp * 1e3:g} mm, v0 = {v0} m/s: failed {history[-1][2]}, "
+              f"{'centre cut out by %.0f us' % (1e6 * cut) if cut is not None else 'centre not cut out'}")
+        d = vtu.read_vtu(vtu.snapshots(out)[-1][1])
+        x = np.asarray(d["points"])
+        sel = np.abs(x[:, 1]) < dp
+        a.scatter(1e3 * x[sel, 0], 1e3 * x[sel, 2], s=1.5, c=np.asarray(d["failed"])[sel], cmap="coolwarm")
+        a.set_aspect("equal")
+        a.set_xlabel("x [mm]")
+        a.set_ylabel("z [mm]")
+        a.set_title(f"dp = {dp * 1e3:g} mm, v0 = {v0} m/s, t = {1e6 * history[-1][0]:.0f} us (red: failed)", fontsize=9)
+    fig.suptitle("striker pin fuse (seed 002 section 5.9), mid-plane particles")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_pin"), result, fig)
+
+
 def rings(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -310,4 +384,4 @@ if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
     args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
     {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate, "column": column,
-     "projectile": projectile}.get(study, lambda a: sys.exit(__doc__))(args)
+     "projectile": projectile, "pin": pin}.get(study, lambda a: sys.exit(__doc__))(args)
