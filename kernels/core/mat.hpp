@@ -1,6 +1,10 @@
-// Fixed-size square matrix Mat<D, Real> (row-major, D = 2 or 3) and the
-// tensor operations of finite-strain mechanics: det, inverse, transpose,
-// products, trace, deviator, outer and double-contraction products.
+// Fixed-size square matrix Mat<D, Real> (row-major) and the tensor
+// operations of finite-strain mechanics: det, inverse, transpose, products,
+// trace, deviator, outer and double-contraction products. D = 2 or 3 for
+// tensors (closed-form det and inverse); any D up to kMaxSmallSize for the
+// small systems of meshfree methods, such as RKPM's (D + 1) x (D + 1) moment
+// matrices (det and inverse by Gauss-Jordan elimination with partial pivoting,
+// kernels/core/small_solve.hpp).
 #pragma once
 #include "kernels/core/vec.hpp"
 
@@ -8,7 +12,7 @@ namespace mfsd {
 
 template <int D, class Real>
 struct Mat {
-  static_assert(D == 2 || D == 3, "mfsd supports 2-D and 3-D");
+  static_assert(D >= 1 && D <= kMaxSmallSize, "Mat<D>: 1 <= D <= kMaxSmallSize");
   Real m[D][D];
 
   MFSD_HD static Mat zero() {

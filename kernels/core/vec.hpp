@@ -1,13 +1,20 @@
-// Fixed-size vector Vec<D, Real> (D = 2 or 3) for host and device code.
+// Fixed-size vector Vec<D, Real> for host and device code: D = 2 or 3 for
+// positions and velocities, up to kMaxSmallSize for the small systems of
+// meshfree methods (RKPM's linear basis in 3-D: D + 1 = 4).
 #pragma once
 #include "kernels/core/config.hpp"
 #include "kernels/core/math.hpp"
 
 namespace mfsd {
 
+// The largest Vec / Mat size: RKPM's quadratic basis in 2-D has 6 terms,
+// its linear basis in 3-D 4; beyond 8 a fixed-size type in registers stops
+// paying (a kernel then wants shared memory or a library).
+inline constexpr int kMaxSmallSize = 8;
+
 template <int D, class Real>
 struct Vec {
-  static_assert(D == 2 || D == 3, "mfsd supports 2-D and 3-D");
+  static_assert(D >= 1 && D <= kMaxSmallSize, "Vec<D>: 1 <= D <= kMaxSmallSize");
   Real v[D];
 
   MFSD_HD static Vec zero() {

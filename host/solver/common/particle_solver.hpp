@@ -9,7 +9,9 @@
 // stages, and registers its output fields in snapshot_fields_.
 // Include after the backend header.
 #pragma once
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -248,6 +250,25 @@ class ParticleSolver : public Solver {
     from_host<B>(measure_density, measure_density_);
     measure_buffer_.resize(measure_index.size() * 2 * D);
     probe_buffer_.resize(probe_index.size() * kProbeValues<D>);
+  }
+
+  // The set-up report's particle and pair figures from the method's CSR
+  // offsets (host copy) and the bytes its pair data take.
+  void report_particles_and_pairs(const std::vector<PairIndex>& offsets, double pair_bytes) {
+    const Index n = particles_.size();
+    report_.particles = n;
+    report_.body_particles.clear();
+    for (auto& r : ranges_) report_.body_particles.push_back(r.size());
+    report_.pairs = n ? long(offsets[size_t(n)]) : 0;
+    report_.mean_neighbors = n ? double(report_.pairs) / n : 0;
+    report_.min_neighbors = n ? std::numeric_limits<long>::max() : 0;
+    report_.max_neighbors = 0;
+    for (Index i = 0; i < n; ++i) {
+      const long c = long(offsets[size_t(i) + 1] - offsets[size_t(i)]);
+      report_.min_neighbors = std::min(report_.min_neighbors, c);
+      report_.max_neighbors = std::max(report_.max_neighbors, c);
+    }
+    report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
   }
 
   // The work of conditions, walls, clamps and contact on body b.

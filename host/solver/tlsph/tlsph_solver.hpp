@@ -244,23 +244,10 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     for (auto& k : bodies_) gravity_at_start_.push_back(k->energy(v_).gravity);  // with an initial displacement
 
     // Set-up report.
-    report_.particles = n;
-    for (auto& r : ranges_) report_.body_particles.push_back(r.size());
-    const auto offsets = to_host<B>(pairs_.offsets);
-    report_.pairs = long(pairs_.pairs());
-    report_.mean_neighbors = n ? double(report_.pairs) / n : 0;
-    report_.min_neighbors = std::numeric_limits<long>::max();
-    report_.max_neighbors = 0;
-    for (Index i = 0; i < n; ++i) {
-      const long c = long(offsets[size_t(i) + 1] - offsets[size_t(i)]);
-      report_.min_neighbors = std::min(report_.min_neighbors, c);
-      report_.max_neighbors = std::max(report_.max_neighbors, c);
-    }
-    if (n == 0) report_.min_neighbors = 0;
     const double pair_bytes = double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
                                                         (paper_limiter ? sizeof(Real) : 0)) +
                               double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>));  // offsets, gradient sum
-    report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
+    this->report_particles_and_pairs(to_host<B>(pairs_.offsets), pair_bytes);
   }
 
   void step() override {

@@ -137,22 +137,10 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     advection_step_ = advection_step(stats);
     dt_next_ = std::min(acoustic_step(stats), advection_step_);
 
-    report_.particles = n;
-    for (auto& r : ranges_) report_.body_particles.push_back(r.size());
-    report_.pairs = long(pairs_);
-    const auto offsets = to_host<B>(offsets_);
-    report_.mean_neighbors = n ? double(pairs_) / n : 0;
-    report_.min_neighbors = n ? std::numeric_limits<long>::max() : 0;
-    report_.max_neighbors = 0;
-    for (Index i = 0; i < n; ++i) {
-      const long c = long(offsets[size_t(i) + 1] - offsets[size_t(i)]);
-      report_.min_neighbors = std::min(report_.min_neighbors, c);
-      report_.max_neighbors = std::max(report_.max_neighbors, c);
-    }
     report_.regularized_corrections = fallback_count_;
-    const double pair_bytes = double(pairs_) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
-                              double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>));
-    report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
+    this->report_particles_and_pairs(to_host<B>(offsets_),
+                                     double(pairs_) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
+                                         double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)));
   }
 
   void step() override {
