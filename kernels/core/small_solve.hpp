@@ -3,8 +3,8 @@
 // in registers, for host and device code: RKPM's moment matrices
 // (../shared/reference/rkpm.md), which are symmetric positive definite when
 // the support holds enough particles and near singular when it does not.
-// Each returns whether the matrix was invertible: a pivot smaller than
-// `tiny` times the largest entry of its column marks it singular (the caller
+// Each returns whether the matrix was invertible: a pivot not above `tiny`
+// times the largest entry of the matrix marks it singular (the caller
 // then falls back, as RKPM's quasi-linear fallback does). Mat<2> and Mat<3>
 // keep their closed forms in mat.hpp for the tensors of mechanics.
 #pragma once
@@ -12,24 +12,46 @@
 
 namespace mfsd {
 
+// The largest |A_ij|: the scale a pivot is judged against.
+template <int N, class Real>
+MFSD_HD inline Real largest_entry(const Mat<N, Real>& A) {
+  Real s = Real(0);
+  for (int a = 0; a < N; ++a)
+    for (int b = 0; b < N; ++b) s = math::max(s, math::fabs(A.m[a][b]));
+  return s;
+}
+
+// The row r >= c with the largest |A_rc| (partial pivoting), or -1 when that
+// entry is not above `threshold` (>= 0; a zero pivot never passes).
+template <int N, class Real>
+MFSD_HD inline int pivot_row(const Mat<N, Real>& A, int c, Real threshold) {
+  int p = c;
+  Real best = math::fabs(A.m[c][c]);
+  for (int r = c + 1; r < N; ++r) {
+    const Real v = math::fabs(A.m[r][c]);
+    if (v > best) best = v, p = r;
+  }
+  return best > threshold ? p : -1;
+}
+
+template <int N, class Real>
+MFSD_HD inline void swap_rows(Mat<N, Real>& A, int a, int b) {
+  for (int k = 0; k < N; ++k) {
+    const Real t = A.m[a][k];
+    A.m[a][k] = A.m[b][k];
+    A.m[b][k] = t;
+  }
+}
+
 // x with A x = b; false (x unchanged) when A is singular to `tiny`.
 template <int N, class Real>
 MFSD_HD inline bool solve(Mat<N, Real> A, Vec<N, Real> b, Vec<N, Real>& x, Real tiny = Real(1e-12)) {
+  const Real threshold = tiny * largest_entry(A);
   for (int c = 0; c < N; ++c) {
-    int p = c;
-    Real best = math::fabs(A.m[c][c]), scale = Real(0);
-    for (int r = c; r < N; ++r) {
-      const Real v = math::fabs(A.m[r][c]);
-      scale = math::max(scale, v);
-      if (v > best) best = v, p = r;
-    }
-    if (!(best > tiny * scale) || best == Real(0)) return false;
+    const int p = pivot_row(A, c, threshold);
+    if (p < 0) return false;
     if (p != c) {
-      for (int k = 0; k < N; ++k) {
-        const Real t = A.m[c][k];
-        A.m[c][k] = A.m[p][k];
-        A.m[p][k] = t;
-      }
+      swap_rows(A, c, p);
       const Real t = b.v[c];
       b.v[c] = b.v[p];
       b.v[p] = t;
@@ -51,24 +73,14 @@ MFSD_HD inline bool solve(Mat<N, Real> A, Vec<N, Real> b, Vec<N, Real>& x, Real 
 template <int N, class Real>
 MFSD_HD inline bool try_inverse(Mat<N, Real> A, Mat<N, Real>& inverse_out, Real tiny = Real(1e-12)) {
   Mat<N, Real> R = Mat<N, Real>::identity();
+  const Real threshold = tiny * largest_entry(A);
   for (int c = 0; c < N; ++c) {
-    int p = c;
-    Real best = math::fabs(A.m[c][c]), scale = Real(0);
-    for (int r = c; r < N; ++r) {
-      const Real v = math::fabs(A.m[r][c]);
-      scale = math::max(scale, v);
-      if (v > best) best = v, p = r;
+    const int p = pivot_row(A, c, threshold);
+    if (p < 0) return false;
+    if (p != c) {
+      swap_rows(A, c, p);
+      swap_rows(R, c, p);
     }
-    if (!(best > tiny * scale) || best == Real(0)) return false;
-    if (p != c)
-      for (int k = 0; k < N; ++k) {
-        Real t = A.m[c][k];
-        A.m[c][k] = A.m[p][k];
-        A.m[p][k] = t;
-        t = R.m[c][k];
-        R.m[c][k] = R.m[p][k];
-        R.m[p][k] = t;
-      }
     const Real inv = Real(1) / A.m[c][c];
     for (int k = 0; k < N; ++k) {
       A.m[c][k] *= inv;
@@ -93,16 +105,10 @@ template <int N, class Real>
 MFSD_HD inline Real det_by_elimination(Mat<N, Real> A) {
   Real d = Real(1);
   for (int c = 0; c < N; ++c) {
-    int p = c;
-    for (int r = c + 1; r < N; ++r)
-      if (math::fabs(A.m[r][c]) > math::fabs(A.m[p][c])) p = r;
-    if (A.m[p][c] == Real(0)) return Real(0);
+    const int p = pivot_row(A, c, Real(0));
+    if (p < 0) return Real(0);
     if (p != c) {
-      for (int k = 0; k < N; ++k) {
-        const Real t = A.m[c][k];
-        A.m[c][k] = A.m[p][k];
-        A.m[p][k] = t;
-      }
+      swap_rows(A, c, p);
       d = -d;
     }
     d *= A.m[c][c];

@@ -140,6 +140,17 @@ TEST(SmallSolve, MomentMatrixOfAParticleSupportAndItsSingularCase) {
   EXPECT_FALSE(try_inverse(moment_matrix(flat, 2.0), unchanged));
   EXPECT_EQ(unchanged.m[0][1], 0.0);
   EXPECT_FALSE(solve(moment_matrix(flat, 2.0), e, bvec));
+  // Singular only to round-off (row 3 = row 1 + row 2 in floating point):
+  // elimination leaves a pivot of order 1e-17, not above 1e-12 of the
+  // largest entry.
+  Mat<3, double> near;
+  const double rows[3][3] = {{0.1, 0.2, 0.3}, {0.4, 0.5, 0.6}, {0.1 + 0.4, 0.2 + 0.5, 0.3 + 0.6}};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) near.m[a][b] = rows[a][b];
+  Mat<3, double> out;
+  EXPECT_FALSE(try_inverse(near, out));
+  Vec<3, double> rhs{{1, 2, 3}}, sol;
+  EXPECT_FALSE(solve(near, rhs, sol));
   // float: the same support, to float's precision.
   Mat<4, float> Mf;
   for (int a = 0; a < 4; ++a)
