@@ -64,7 +64,7 @@ struct PairRefreshFunctor {
   Vec<D, Real>* gradient_sum;
 
   // Row i again; returns the moment matrix A_i = -sum_j grad (x) grad / stretch
-  // of the new row (velocity_gradient.hpp), formed in the same loop.
+  // of the row just formed (velocity_gradient.hpp), in the same loop.
   MFSD_HD Mat<D, Real> refresh(Index i) const {
     const Vec<D, Real> xi = reference_position[i] + displacement[i];
     Vec<D, Real> sum = Vec<D, Real>::zero();

@@ -7,7 +7,7 @@
 //   ForceFunctor      a = pressure with Riemann dissipation (eq. 15-17) + shear
 //                     (eq. 18) + the accumulated GNOG penalty (eq. 27-29) + g
 //   VelocityFunctor   v += dt a                                                  (eq. 31)
-//   second half       HalfStepFunctor at the new velocity                        (eq. 32)
+//   second half       HalfStepFunctor at v^{n+1} (eq. 32), the numerical forces' work
 // Positions are displacements u = x - X (host/solver/common/kinematics.hpp).
 // The pair data (grad, stretch) stay those of the last neighbour rebuild
 // (ulsph_pair_fill.hpp) through the acoustic sub-steps of an advection step.

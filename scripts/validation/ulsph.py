@@ -185,6 +185,15 @@ def long_plate(args):
     m.write_study(os.path.join(DOCS, "ulsph_plate_long"), result, fig)
 
 
+def particle_panel(a, h, v, colour, cmap, size, labels, title):
+    """One panel of particles (mm) coloured by a field, equal axes."""
+    a.scatter(1e3 * h, 1e3 * v, s=size, c=colour, cmap=cmap)
+    a.set_aspect("equal")
+    a.set_xlabel(labels[0])
+    a.set_ylabel(labels[1])
+    a.set_title(title, fontsize=9)
+
+
 def first_minimum(t, z):
     for k in range(1, len(z) - 1):
         if z[k] < z[k - 1] and z[k] <= z[k + 1] and t[k] > 0.05:
@@ -266,11 +275,8 @@ def projectile(args):
               f"{case['plastic_share']:.3f}, numerical {case['numerical_share']:.3f}, balance {case['balance_end']:.4f}, "
               f"momentum error {drift:.1e}")
         up = x[:, 1] >= 0
-        a.scatter(1e3 * x[up, 0], 1e3 * x[up, 1], s=0.2, c=np.asarray(d["von_mises"])[up], cmap="jet")
-        a.set_aspect("equal")
-        a.set_xlabel("x [mm]")
-        a.set_ylabel("y [mm]")
-        a.set_title(f"dp = {dp * 1e3:g} mm, t = {1e6 * t_end:.1f} us (von Mises)", fontsize=9)
+        particle_panel(a, x[up, 0], x[up, 1], np.asarray(d["von_mises"])[up], "jet", 0.2, ("x [mm]", "y [mm]"),
+                       f"dp = {dp * 1e3:g} mm, t = {1e6 * t_end:.1f} us (von Mises)")
     fig.suptitle("aluminium disc at 3100 m/s through a 2 mm plate (seed 002 section 5.8), upper half")
     fig.tight_layout()
     m.write_study(os.path.join(DOCS, "ulsph_projectile"), result, fig)
@@ -332,14 +338,10 @@ def pin(args):
         result["cases"].append(case)
         print(f"dp = {dp * 1e3:g} mm, v0 = {v0} m/s: failed {history[-1][2]}, "
               f"{'centre cut out by %.0f us' % (1e6 * cut) if cut is not None else 'centre not cut out'}")
-        d = vtu.read_vtu(vtu.snapshots(out)[-1][1])
-        x = np.asarray(d["points"])
+        x = np.asarray(d["points"])  # d: the last snapshot, read in the loop above
         sel = np.abs(x[:, 1]) < dp
-        a.scatter(1e3 * x[sel, 0], 1e3 * x[sel, 2], s=1.5, c=np.asarray(d["failed"])[sel], cmap="coolwarm")
-        a.set_aspect("equal")
-        a.set_xlabel("x [mm]")
-        a.set_ylabel("z [mm]")
-        a.set_title(f"dp = {dp * 1e3:g} mm, v0 = {v0} m/s, t = {1e6 * history[-1][0]:.0f} us (red: failed)", fontsize=9)
+        particle_panel(a, x[sel, 0], x[sel, 2], np.asarray(d["failed"])[sel], "coolwarm", 1.5, ("x [mm]", "z [mm]"),
+                       f"dp = {dp * 1e3:g} mm, v0 = {v0} m/s, t = {1e6 * history[-1][0]:.0f} us (red: failed)")
     fig.suptitle("striker pin fuse (seed 002 section 5.9), mid-plane particles")
     fig.tight_layout()
     m.write_study(os.path.join(DOCS, "ulsph_pin"), result, fig)
