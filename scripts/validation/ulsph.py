@@ -30,6 +30,10 @@
             dp = 0.2 mm with 400 m/s: the pairs of plate particles within 2h
             across the two groove lines (0: the centre piece is cut out),
             the failed particles, the mid-plane particles at the end.
+  punch     the punched block (tests/regression/scenes/punched_block_2d.json)
+            in TLSPH and ULSPH: the punch force at the end for the shipped
+            indentation, half the spacing, and two smaller indentations
+            (constants.vp 0.035, 0.03); the ULSPH / TLSPH ratio.
   rings     colliding rubber rings 2-D (configs/colliding_rings_ulsph_2d.json)
             at dp = 2, 1, 0.5 mm and hollow balls 3-D
             (configs/colliding_balls_ulsph_3d.json) at dp = 3, 2 mm: kinetic,
@@ -38,7 +42,7 @@
             65.88 -> 56.74 per ring, 3-D: 8.27 -> 8.16).
 
 Writes docs/validation/ulsph_<study>.json and .png.
-Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column|projectile|pin [--res 10 20] [--threads N] [--reuse]
+Usage: scripts/validation/ulsph.py plate|spinning|rings|long|column|projectile|pin|punch [--res 10 20] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -347,6 +351,36 @@ def pin(args):
     m.write_study(os.path.join(DOCS, "ulsph_pin"), result, fig)
 
 
+def punch(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scene = "tests/regression/scenes/punched_block_2d.json"
+    ulsph = {"solver.method": "ulsph", "solver.hourglass": "gnog", "bodies.block.material.model": "linear_elastic"}
+    variants = [("shipped", {}), ("dp / 2", {"constants.dp": 0.00025}), ("vp 0.035", {"constants.vp": 0.035}),
+                ("vp 0.03", {"constants.vp": 0.03})]
+    result = {"scene": scene, "machine": m.machine(), "cases": []}
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for k, (name, sets) in enumerate(variants):
+        force = {}
+        for method, extra in (("tlsph", {}), ("ulsph", ulsph)):
+            out = os.path.join(OUT, f"punch_{method}_{name.replace(' ', '').replace('/', 'over')}")
+            m.run_and_read(scene, {**sets, **extra, "output.interval": 0.001}, out, args.threads, args.reuse)
+            forces = m.read_csv(os.path.join(out, "boundary_forces.csv"))
+            force[method] = forces["punch.y"][-1]
+        case = {"case": name, "sets": sets, "tlsph": force["tlsph"], "ulsph": force["ulsph"],
+                "ratio": force["ulsph"] / force["tlsph"]}
+        result["cases"].append(case)
+        print(f"{name}: punch force TLSPH {force['tlsph']:.1f} N/m, ULSPH {force['ulsph']:.1f} N/m, "
+              f"ratio {case['ratio']:.3f}")
+        ax.bar([2 * k, 2 * k + 0.8], [-force["tlsph"], -force["ulsph"]], color=["C0", "C1"])
+    ax.set_xticks([2 * k + 0.4 for k in range(len(variants))])
+    ax.set_xticklabels([v[0] for v in variants])
+    ax.set_ylabel("punch force at 0.04 s [N/m] (TLSPH blue, ULSPH orange)")
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "ulsph_punch"), result, fig)
+
+
 def rings(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -386,4 +420,4 @@ if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else ""
     args = m.study_arguments(__doc__, res_help="H/dp of the plate (default 10 20)")
     {"plate": plate, "spinning": spinning, "rings": rings, "long": long_plate, "column": column,
-     "projectile": projectile, "pin": pin}.get(study, lambda a: sys.exit(__doc__))(args)
+     "projectile": projectile, "pin": pin, "punch": punch}.get(study, lambda a: sys.exit(__doc__))(args)

@@ -64,7 +64,7 @@ TEST_P(ContactRigid, PunchForceBalancesTheBaseAndKeepsTheFace) {
 // The punch force at the end (punch held still since t1) from the two
 // methods: neo-Hookean TLSPH against the hypo-elastic linear solid of ULSPH,
 // the same indentation. Measured: ULSPH gives 0.922 of the TLSPH force
-// (-441.6 against -478.8 N/m), 0.921 at dp / 2 (-719.3 / -780.7: not a
+// (-441.6 against -478.8 N/m), 0.923 at dp / 2 (-720.5 / -780.7: not a
 // resolution effect), 0.944 and 0.949 at 4.4 % and 3.5 % indentation
 // (constants.vp 0.035, 0.03); docs/validation.md, "Shared services".
 TEST(ContactRigidMethods, PunchForceAgreesBetweenMethods) {
