@@ -67,21 +67,31 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
   o.precision(6);
   o << "scene '" << s.name << "' from " << doc.source_name << ": valid\n";
   if (!s.description.empty()) o << "  " << s.description << "\n";
-  o << "  dimension " << s.dimension << ", method " << to_string(s.solver.method) << ", hourglass "
-    << to_string(s.solver.hourglass) << ", h/dp " << s.solver.h_over_dp << ", CFL " << s.solver.cfl << ", end time "
-    << s.solver.end_time << " s, precision " << to_string(s.solver.precision) << "\n";
-  const char* sound_speed =
-      s.solver.sound_speed == SoundSpeed::bulk ? "bulk sqrt(K/rho0)" : "p-wave sqrt((K+4G/3)/rho0)";
-  if (s.solver.method == Method::ulsph) {
-    const UlsphSpec& u = s.solver.ulsph;
-    o << "  " << (u.dual_time_stepping ? "dual-criteria" : "single-criterion") << " time stepping (advection CFL "
-      << u.advection_cfl << ", reference speed " << u.reference_speed << " m/s), pair data "
-      << (u.refresh_pairs ? "formed every step" : "frozen over the advection step") << ", J2 return "
-      << (u.remove_plastic_rate ? "seed" : "radial") << ", sound speed " << sound_speed << "\n";
-  } else {
-    o << "  damping factor " << s.solver.damping_factor << " ("
-      << (s.solver.damping_form == DampingForm::split ? "split" : "isotropic") << "), sound speed " << sound_speed
-      << ", kernel correction in force sums: " << (s.solver.correction_in_force ? "yes" : "no") << "\n";
+  // One line of settings per method its bodies use (a scene of both runs each
+  // part with solver_for, docs/scene-reference.md "Mixed methods").
+  for (Method m : {Method::tlsph, Method::ulsph}) {
+    std::string names;
+    for (const BodySpec& b : s.bodies)
+      if (b.method == m) names += (names.empty() ? "" : ", ") + b.name;
+    if (names.empty()) continue;
+    const SolverSpec sv = solver_for(s.solver, m);
+    o << "  dimension " << s.dimension << ", method " << to_string(m) << ", hourglass " << to_string(sv.hourglass)
+      << ", h/dp " << sv.h_over_dp << ", CFL " << sv.cfl << ", end time " << sv.end_time << " s, precision "
+      << to_string(sv.precision) << "\n";
+    if (mixed_methods(s)) o << "    bodies: " << names << "\n";
+    const char* sound_speed =
+        sv.sound_speed == SoundSpeed::bulk ? "bulk sqrt(K/rho0)" : "p-wave sqrt((K+4G/3)/rho0)";
+    if (m == Method::ulsph) {
+      const UlsphSpec& u = sv.ulsph;
+      o << "  " << (u.dual_time_stepping ? "dual-criteria" : "single-criterion") << " time stepping (advection CFL "
+        << u.advection_cfl << ", reference speed " << u.reference_speed << " m/s), pair data "
+        << (u.refresh_pairs ? "formed every step" : "frozen over the advection step") << ", J2 return "
+        << (u.remove_plastic_rate ? "seed" : "radial") << ", sound speed " << sound_speed << "\n";
+    } else {
+      o << "  damping factor " << sv.damping_factor << " ("
+        << (sv.damping_form == DampingForm::split ? "split" : "isotropic") << "), sound speed " << sound_speed
+        << ", kernel correction in force sums: " << (sv.correction_in_force ? "yes" : "no") << "\n";
+    }
   }
   if (s.solver.relaxation.enabled) {
     const RelaxationSpec& r = s.solver.relaxation;

@@ -11,6 +11,40 @@ bool has_plastic_body(const Scene& scene) {
   return false;
 }
 
+SolverSpec solver_for(const SolverSpec& s, Method m) {
+  if (m == s.method) return s;
+  SolverSpec r;  // the other method's defaults
+  r.method = m;
+  r.ulsph = s.ulsph;
+  r.end_time = s.end_time;
+  r.h_over_dp = s.h_over_dp;
+  r.precision = s.precision;
+  r.sound_speed = s.sound_speed;
+  r.gravity = s.gravity;
+  r.reorder = s.reorder;
+  r.cfl_given = s.cfl_given;
+  r.deformed_time_step = s.deformed_time_step;
+  r.deformed_time_step_given = s.deformed_time_step_given;
+  if (m == Method::ulsph) {
+    r.hourglass = s.ulsph.hourglass;
+    r.damping_factor = 0;  // ULSPH dissipates through its Riemann solver (seed 002 eq. 15-17)
+    r.cfl = s.cfl_given ? s.cfl : 0.4;
+  } else {
+    r.cfl = s.cfl_given ? s.cfl : 0.6;
+  }
+  return r;
+}
+
+bool mixed_methods(const Scene& scene) {
+  for (const auto& b : scene.bodies)
+    if (b.method != scene.bodies.front().method) return true;
+  return false;
+}
+
+Method scene_method(const Scene& scene) {
+  return scene.bodies.empty() ? scene.solver.method : scene.bodies.front().method;
+}
+
 bool has_fracture_body(const Scene& scene) {
   for (const auto& b : scene.bodies)
     if (b.material.fracture.enabled) return true;

@@ -18,7 +18,7 @@ namespace mfsd {
 // return in ULSPH (seed 002 eq. 9-12).
 enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel, holzapfel_ogden, linear_elastic };
 enum class HardeningLaw { linear, saturation, herschel_bulkley };
-// The solution method of a scene (solver.method).
+// The solution method of a body (bodies[].method; solver.method is the default).
 enum class Method { tlsph, ulsph };
 // Hourglass control: tlsph none | laplacian | genog, ulsph none | gnog | gnog_amc.
 enum class HourglassControl { none, laplacian, genog, gnog, gnog_amc };
@@ -93,6 +93,7 @@ struct MaterialSpec {
 
 struct BodySpec {
   std::string name;
+  Method method = Method::tlsph;  // bodies[].method, default solver.method
   Shape geometry;
   double spacing = 0;
   MaterialSpec material;
@@ -206,6 +207,8 @@ struct UlsphSpec {
   bool refresh_pairs = true;        // pair data at every step's positions between searches (theory.md)
   bool remove_plastic_rate = false;  // J2: radial return | the seed's rate without its plastic part first
   double xi = -1;                   // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
+  // solver.ulsph.hourglass, or solver.hourglass when ulsph is the scene's method.
+  HourglassControl hourglass = HourglassControl::gnog;
 };
 
 struct SolverSpec {
@@ -214,6 +217,7 @@ struct SolverSpec {
   HourglassControl hourglass = HourglassControl::genog;
   double h_over_dp = 1.15;
   double cfl = 0.6;
+  bool cfl_given = false;  // solver.cfl given: it holds for both methods (else each method's default)
   double end_time = 0;
   double zeta = 1.07;
   double genog_alpha = 8.0;
@@ -285,6 +289,17 @@ struct CrackSpec {
   double notch_length;
 };
 std::vector<CrackSpec> crack_specs(const Scene& scene);
+
+// The settings a body of method m runs with: the scene's own for its
+// method (solver.method), else that method's defaults with the settings both
+// methods share (end_time, h_over_dp, cfl when given, precision, sound_speed,
+// gravity, reorder) and, for ULSPH, solver.ulsph (docs/scene-reference.md,
+// "Mixed methods").
+SolverSpec solver_for(const SolverSpec& solver, Method m);
+// Whether the scene's bodies use both methods (host/solver/coupled/).
+bool mixed_methods(const Scene& scene);
+// The one method of an unmixed scene's bodies (solver.method when all agree with it).
+Method scene_method(const Scene& scene);
 
 const char* to_string(MaterialModel m);
 const char* to_string(HourglassControl h);

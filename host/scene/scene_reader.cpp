@@ -231,16 +231,21 @@ SolverSpec read_solver(JsonNode s, int dim) {
   const std::string method = s.has("formulation") ? s.choice("formulation", {"tlsph", "ulsph"}, "tlsph")
                                                   : s.choice("method", {"tlsph", "ulsph"}, "tlsph");
   spec.method = method == "ulsph" ? Method::ulsph : Method::tlsph;
-  if (spec.method == Method::ulsph) {
-    for (const char* key : kTlsphOnlyKeys)
-      if (s.has(key))
-        throw SceneError(s.key_path(key), "a setting of method tlsph",
-                         "no such key with solver.method \"ulsph\" (docs/scene-reference.md lists each method's keys)");
-    const std::string hg = s.choice("hourglass", {"none", "gnog", "gnog_amc"}, "gnog");
-    spec.hourglass =
-        hg == "none" ? HourglassControl::none : (hg == "gnog" ? HourglassControl::gnog : HourglassControl::gnog_amc);
-    spec.damping_factor = 0;  // ULSPH dissipates through its Riemann solver (seed 002 eq. 15-17)
+  // solver.ulsph: the settings of the ULSPH bodies, whichever the scene's method.
+  auto ulsph_hourglass = [](const std::string& hg) {
+    return hg == "none" ? HourglassControl::none : (hg == "gnog" ? HourglassControl::gnog : HourglassControl::gnog_amc);
+  };
+  bool hourglass_in_ulsph = false;
+  // (No read of `s` while `u` lives: a key added to s's resolved object may move u's.)
+  if (spec.method == Method::ulsph || s.has("ulsph")) {
+    const bool hourglass_in_solver = s.has("hourglass");
     JsonNode u = s.object_or_empty("ulsph");
+    hourglass_in_ulsph = u.has("hourglass");
+    if (spec.method == Method::ulsph && hourglass_in_solver && hourglass_in_ulsph)
+      throw SceneError(u.key_path("hourglass"), "both solver.hourglass and solver.ulsph.hourglass",
+                       "one of them (with solver.method \"ulsph\" they are the same setting)");
+    if (spec.method != Method::ulsph || hourglass_in_ulsph)
+      spec.ulsph.hourglass = ulsph_hourglass(u.choice("hourglass", {"none", "gnog", "gnog_amc"}, "gnog"));
     spec.ulsph.dual_time_stepping = u.choice("time_stepping", {"dual", "single"}, "dual") == "dual";
     spec.ulsph.advection_cfl = u.number("advection_cfl", 0.2, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
     spec.ulsph.reference_speed = u.number("reference_speed", 0.0, Range::non_negative());
@@ -248,10 +253,19 @@ SolverSpec read_solver(JsonNode s, int dim) {
     spec.ulsph.remove_plastic_rate = u.choice("j2_return", {"radial", "seed"}, "radial") == "seed";
     if (u.has("xi")) spec.ulsph.xi = u.number("xi", Range::positive());
     u.finish();
+  }
+  if (spec.method == Method::ulsph && !hourglass_in_ulsph)
+    spec.ulsph.hourglass = ulsph_hourglass(s.choice("hourglass", {"none", "gnog", "gnog_amc"}, "gnog"));
+  if (spec.method == Method::ulsph) {
+    for (const char* key : kTlsphOnlyKeys)
+      if (s.has(key))
+        throw SceneError(s.key_path(key), "a setting of method tlsph",
+                         "no such key with solver.method \"ulsph\" (docs/scene-reference.md lists each method's keys; "
+                         "for TLSPH settings in a scene of both methods, make tlsph the scene's method and give the "
+                         "ULSPH bodies bodies[].method \"ulsph\")");
+    spec.hourglass = spec.ulsph.hourglass;
+    spec.damping_factor = 0;  // ULSPH dissipates through its Riemann solver (seed 002 eq. 15-17)
   } else {
-    if (s.has("ulsph"))
-      throw SceneError(s.key_path("ulsph"), "ULSPH settings with method tlsph",
-                       "solver.method \"ulsph\", or no solver.ulsph");
     const std::string hg = s.choice("hourglass", {"none", "laplacian", "genog"}, "genog");
     spec.hourglass = hg == "none" ? HourglassControl::none
                                   : (hg == "laplacian" ? HourglassControl::laplacian : HourglassControl::genog);
@@ -259,6 +273,7 @@ SolverSpec read_solver(JsonNode s, int dim) {
   spec.end_time = s.number("end_time", Range::positive());
   spec.h_over_dp = s.number("h_over_dp", 1.15, Range{1.0, 2.0, false, false, "a number in [1, 2]"});
   // The acoustic CFL number in both methods: h/(c0 + |v|max) (seed 000 eq. 38, seed 002 eq. 29).
+  spec.cfl_given = s.has("cfl");
   spec.cfl =
       s.number("cfl", spec.method == Method::ulsph ? 0.4 : 0.6, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
   spec.precision = s.choice("precision", {"double", "float"}, "double") == "float" ? Precision::single_precision
@@ -555,30 +570,34 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     JsonNode node = root.element("bodies", b, *bodies[b]);
     BodySpec body;
     body.name = node.string("name");
+    body.method = node.choice("method", {"tlsph", "ulsph"}, to_string(scene.solver.method)) == "ulsph" ? Method::ulsph
+                                                                                                     : Method::tlsph;
+    // The settings this body runs with (solver_for: a body of the other method takes that method's defaults).
+    const SolverSpec solver = solver_for(scene.solver, body.method);
     if (!names.insert(body.name).second)
       throw SceneError(node.key_path("name"), "\"" + body.name + "\"", "a name no other body has");
     body.spacing = node.number("spacing", Range::positive());
     body.geometry = read_shape(node.object("geometry"), dim, scene.base_dir);
     body.material = read_material(node.object("material"), body.spacing, dim, scene.warnings);
     if (body.material.fracture.enabled) check_file_name(node.key_path("name"), body.name, "crack_<name>.csv");
-    check_method_material(body, scene.solver, node.key_path("material"));
-    if (body.material.fracture.enabled && scene.solver.hourglass != HourglassControl::none)
+    check_method_material(body, solver, node.key_path("material"));
+    if (body.material.fracture.enabled && solver.hourglass != HourglassControl::none)
       throw SceneError(
           "/solver/hourglass",
-          std::string("\"") + to_string(scene.solver.hourglass) + "\" with fracture in body \"" + body.name + "\"",
+          std::string("\"") + to_string(solver.hourglass) + "\" with fracture in body \"" + body.name + "\"",
           "\"none\": the degraded stress of phase-field fracture is implemented in the standard "
           "TLSPH form (seed 001), not in the hourglass-controlled splits");
-    if (body.material.model == MaterialModel::holzapfel_ogden && scene.solver.hourglass == HourglassControl::laplacian)
+    if (body.material.model == MaterialModel::holzapfel_ogden && solver.hourglass == HourglassControl::laplacian)
       throw SceneError("/solver/hourglass",
                        std::string("\"laplacian\" with the holzapfel_ogden body \"") + body.name + "\"",
                        "\"genog\" or \"none\": the Laplacian form of seed 003 is defined for isotropic elastic "
                        "bodies; GENOG's shear term takes the Holzapfel-Ogden c = a exp[b(I1 - 3)] (seed 000)");
-    if (body.material.plastic() && scene.solver.hourglass == HourglassControl::laplacian)
+    if (body.material.plastic() && solver.hourglass == HourglassControl::laplacian)
       throw SceneError(node.key_path("material") + "/model",
                        std::string("\"") + to_string(body.material.model) + "\" with solver.hourglass \"laplacian\"",
                        "an elastic model, or hourglass \"genog\" or \"none\": the Laplacian form of seed 003 "
                        "is defined for elastic bodies only");
-    check_body_properties(body, scene.solver, dim, node.path());
+    check_body_properties(body, solver, dim, node.path());
     JsonNode v = node.object_or_empty("initial_velocity");
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < dim; ++a) body.initial_velocity[size_t(a)] = v.expression(axes[a], "0");
@@ -595,6 +614,11 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     node.finish();
     scene.bodies.push_back(body);
   }
+
+  if (scene.solver.method == Method::tlsph && doc.contains("solver") && doc["solver"].is_object() &&
+      doc["solver"].contains("ulsph") && !mixed_methods(scene))
+    throw SceneError("/solver/ulsph", "ULSPH settings in a scene without ULSPH bodies",
+                     "solver.method \"ulsph\" or bodies[].method \"ulsph\", or no solver.ulsph");
 
   auto clamps = root.array("clamps", false);
   std::set<std::string> boundary_names;  // clamps, conditions, loads, walls: columns of boundary_forces.csv

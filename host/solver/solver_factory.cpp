@@ -22,7 +22,13 @@ MFSD_DECLARE(cuda, 3, double)
 #endif
 #undef MFSD_DECLARE
 
-std::unique_ptr<Solver> make_solver(const Scene& scene, const InitialParticles& p, const SolverOptions& o) {
+std::unique_ptr<Solver> make_solver(const Scene& given, const InitialParticles& p, const SolverOptions& o) {
+  // Bodies all of the other method than solver.method: that method's settings (solver_for).
+  Scene scene = given;
+  if (!mixed_methods(given) && scene_method(given) != given.solver.method) {
+    scene.solver = solver_for(given.solver, scene_method(given));
+    if (!scene.solver.deformed_time_step_given) scene.solver.deformed_time_step = has_plastic_body(scene);
+  }
   const bool single = o.precision == Precision::single_precision;
   const int d = scene.dimension;
   if (o.backend == "cpu") {

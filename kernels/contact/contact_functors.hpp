@@ -2,8 +2,9 @@
 // current configuration each step). The candidates are the particles of the
 // bodies that take part in contact, then the surface markers of the rigid
 // bodies that do. Per step:
-//   ContactCandidateFunctor  current position and velocity of each candidate
-//                            (particles: X + u at t + dt/2 and v^n = v - dt a,
+//   ContactCandidateFunctor  current position and velocity of each candidate,
+//                            one launch per particle set (part) and one for the
+//                            markers (particles: X + u at t + dt/2 and v^n = v - dt a,
 //                            the velocity at the start of the step; markers:
 //                            the prescribed placement x = A X + b and
 //                            v = A' X + b' at t + dt/2). Not the velocity
@@ -40,6 +41,10 @@ struct ContactGroup {
   Real support2;     // self-contact needs |X_i - X_j|^2 >= support2 (kernel support squared)
   int self_contact;  // 1: pairs within the group may touch (deformable bodies only)
   int rigid;         // 1: a rigid body's markers
+  // Groups of one part never touch each other: the contact between the
+  // particle sets of two methods (host/solver/coupled/) gives each set's
+  // groups its part; the contact of one set gives each group its own.
+  int part;
 };
 
 // The placement of a rigid body at the contact time: x = A X + b, v = A' X + b'.
@@ -49,10 +54,13 @@ struct RigidPlacement {
   Vec<D, Real> b, b_rate;
 };
 
+// Candidates [first, first + launch size): below `particles` those of one
+// particle set (particle[c] indexes its fields), from it the markers.
 template <int D, class Real>
 struct ContactCandidateFunctor {
-  Index particles;        // candidates [0, particles) are body particles
-  const Index* particle;  // candidate -> particle index
+  Index first;
+  Index particles;        // candidates below it are body particles
+  const Index* particle;  // candidate -> particle index in its set
   const Vec<D, Real>* reference_position;
   const Vec<D, Real>* displacement;
   const Vec<D, Real>* velocity;
@@ -64,10 +72,13 @@ struct ContactCandidateFunctor {
   const RigidPlacement<D, Real>* placement;  // per rigid body
   Vec<D, Real>* x;
   Vec<D, Real>* v;
+  Vec<D, Real>* X;  // the particles' reference positions (self-contact test)
 
-  MFSD_HD void operator()(Index c) const {
+  MFSD_HD void operator()(Index k) const {
+    const Index c = first + k;
     if (c < particles) {
       const Index p = particle[c];
+      X[c] = reference_position[p];
       x[c] = reference_position[p] + displacement[p];
       v[c] = velocity[p] - acceleration[p] * dt;  // v^n
       return;
@@ -128,8 +139,7 @@ struct ContactForceFunctor {
   const Index* order;  // cell-sorted position -> candidate
   const Vec<D, Real>* x;
   const Vec<D, Real>* v;
-  const Vec<D, Real>* X;  // reference positions of the particles (self-contact test)
-  const Index* particle;  // candidate -> particle (candidates of self-contact groups are particles)
+  const Vec<D, Real>* X;  // reference positions of the candidates (self-contact groups are particles)
   const Real* mass;       // 0 for markers
   const int* group;
   const ContactGroup<Real>* groups;
@@ -160,7 +170,8 @@ struct ContactForceFunctor {
         const int gj = group[j];
         const ContactGroup<Real> Gj = groups[gj];
         if (Gi.rigid && Gj.rigid) continue;
-        if (gi == gj && (!Gi.self_contact || squared_norm(X[particle[i]] - X[particle[j]]) < Gi.support2)) continue;
+        if (gi == gj && (!Gi.self_contact || squared_norm(X[i] - X[j]) < Gi.support2)) continue;
+        if (gi != gj && Gi.part == Gj.part) continue;
         const Vec<D, Real> r = xi - x[j];
         const Real d0 = Real(0.5) * (Gi.spacing + Gj.spacing);
         const Real r2 = squared_norm(r);

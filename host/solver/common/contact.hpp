@@ -1,7 +1,11 @@
 // Contact of a run on one backend, any method (scene.contact): the candidates (the
 // particles of the bodies in contact, then the surface markers of the rigid
 // bodies that push them), the current-configuration cell search of each step
-// and the pair forces of kernels/contact. Runs after the force stage, at the
+// and the pair forces of kernels/contact. The particles may come from
+// several particle sets (parts: the solvers of a scene of two methods, each
+// with its own numbering and Kinematics view); `between_parts` then keeps only
+// the pairs of two different parts (the contact within a part is that
+// solver's own). Runs after the force stage, at the
 // half-step positions, like a load. Keeps per body the work of the contact
 // forces (energies.csv) and per rigid body the force it exerts on the bodies
 // (boundary_forces.csv). Include after the backend header.
@@ -28,59 +32,90 @@
 
 namespace mfsd {
 
+// One particle set of a contact: its bodies (scene index of each of its
+// bodies, their index ranges and properties), the particles' volumes in the
+// set's (reordered) order and which can touch (`near_surface`: the surface
+// layer, one kernel support deep: interior particles never meet another body).
+template <class Real>
+struct ContactPartSetup {
+  std::vector<size_t> scene_body;
+  std::vector<BodyRange> ranges;
+  std::vector<BodyProperties> props;
+  std::vector<Real> volume;
+  std::vector<unsigned char> near_surface;
+};
+
 template <class B, int D, class Real>
 class Contact {
  public:
   bool enabled() const { return enabled_; }
 
-  // `volume`: the particles' volumes in the solver's (reordered) order;
-  // `near_surface`: which particles can touch (the surface layer, one kernel
-  // support deep: interior particles never meet another body).
+  // The contact of one solver's particles: scene.contact's bodies, the
+  // rigid bodies that push them, self-contact.
   void setup(const Scene& scene, const InitialParticles& init, const std::vector<BodyRange>& ranges,
              const std::vector<BodyProperties>& props, const std::vector<Real>& volume,
              const std::vector<unsigned char>& near_surface) {
+    ContactPartSetup<Real> part{{}, ranges, props, volume, near_surface};
+    for (size_t b = 0; b < scene.bodies.size(); ++b) part.scene_body.push_back(b);
+    setup(scene, init.rigid_markers, {part}, false);
+  }
+
+  // `between_parts`: only the pairs of bodies of two different parts, no
+  // rigid bodies and no self-contact.
+  void setup(const Scene& scene, const std::vector<std::vector<Point3>>& rigid_markers,
+             const std::vector<ContactPartSetup<Real>>& parts, bool between_parts) {
     const ContactSpec& spec = scene.contact;
     enabled_ = spec.enabled;
     work_.assign(scene.bodies.size(), 0.0);
     if (!enabled_) return;
     law_ = ContactPairLaw<Real>{Real(contact_damping_ratio(spec.restitution)), Real(spec.friction)};
     stiffness_factor_ = spec.stiffness;
-    std::map<std::string, size_t> body_index, rigid_index;
-    for (size_t b = 0; b < scene.bodies.size(); ++b) body_index[scene.bodies[b].name] = b;
+    std::map<std::string, size_t> rigid_index;
     for (size_t r = 0; r < scene.rigid_bodies.size(); ++r) rigid_index[scene.rigid_bodies[r].name] = r;
 
     std::vector<Index> particle;
     std::vector<Real> mass;
     std::vector<int> group;
     std::vector<ContactGroup<Real>> groups;
-    for (const std::string& name : spec.bodies) {
-      const size_t b = body_index.at(name);
-      const bool self = std::find(spec.self_contact.begin(), spec.self_contact.end(), name) != spec.self_contact.end();
-      const double support = 2.0 * props[b].h;
-      const double rho = scene.bodies[b].material.density;
-      groups.push_back(ContactGroup<Real>{Real(scene.bodies[b].spacing), Real(rho * props[b].c0 * props[b].c0),
-                                          Real(support * support), self ? 1 : 0, 0});
-      Span s{b, Index(particle.size()), 0};
-      for (Index p = ranges[b].begin; p < ranges[b].end; ++p) {
-        if (!near_surface[size_t(p)]) continue;
-        particle.push_back(p);
-        mass.push_back(Real(rho * double(volume[size_t(p)])));
-        group.push_back(int(groups.size() - 1));
+    part_begin_.assign(1, 0);
+    for (size_t q = 0; q < parts.size(); ++q) {
+      const ContactPartSetup<Real>& P = parts[q];
+      for (const std::string& name : spec.bodies) {  // in contact.bodies order
+        size_t lb = 0;
+        while (lb < P.scene_body.size() && scene.bodies[P.scene_body[lb]].name != name) ++lb;
+        if (lb == P.scene_body.size()) continue;  // a body of another part
+        const size_t b = P.scene_body[lb];
+        const bool self = !between_parts &&
+                          std::find(spec.self_contact.begin(), spec.self_contact.end(), name) != spec.self_contact.end();
+        const double support = 2.0 * P.props[lb].h;
+        const double rho = scene.bodies[b].material.density;
+        const int g = int(groups.size());
+        groups.push_back(ContactGroup<Real>{Real(scene.bodies[b].spacing),
+                                            Real(rho * P.props[lb].c0 * P.props[lb].c0), Real(support * support),
+                                            self ? 1 : 0, 0, between_parts ? int(q) : g});
+        Span s{b, Index(particle.size()), 0, q};
+        for (Index p = P.ranges[lb].begin; p < P.ranges[lb].end; ++p) {
+          if (!P.near_surface[size_t(p)]) continue;
+          particle.push_back(p);
+          mass.push_back(Real(rho * double(P.volume[size_t(p)])));
+          group.push_back(g);
+        }
+        s.end = Index(particle.size());
+        body_spans_.push_back(s);
+        max_spacing_ = std::max(max_spacing_, scene.bodies[b].spacing);
       }
-      s.end = Index(particle.size());
-      body_spans_.push_back(s);
-      max_spacing_ = std::max(max_spacing_, scene.bodies[b].spacing);
+      part_begin_.push_back(Index(particle.size()));
     }
     particles_ = Index(particle.size());
     first_rigid_group_ = int(groups.size());
     std::vector<Vec<D, Real>> markers;
-    for (const std::string& name : spec.rigid_bodies) {
+    for (const std::string& name : between_parts ? std::vector<std::string>{} : spec.rigid_bodies) {
       const size_t r = rigid_index.at(name);
       const RigidBodySpec& rs = scene.rigid_bodies[r];
-      groups.push_back(ContactGroup<Real>{Real(rs.marker_spacing), Real(0), Real(0), 0, 1});
+      groups.push_back(ContactGroup<Real>{Real(rs.marker_spacing), Real(0), Real(0), 0, 1, int(groups.size())});
       motion_.emplace_back(rs, scene.constants, "/rigid_bodies/" + std::to_string(r));
-      Span s{r, Index(particles_ + markers.size()), 0};
-      for (const Point3& X : init.rigid_markers[r]) {
+      Span s{r, Index(particles_ + markers.size()), 0, 0};
+      for (const Point3& X : rigid_markers[r]) {
         Vec<D, Real> x;
         for (int a = 0; a < D; ++a) x.v[a] = Real(X[a]);
         markers.push_back(x);
@@ -102,6 +137,7 @@ class Contact {
     placement_.resize(rigid_spans_.size());
     x_.resize(size_t(count_));
     v_.resize(size_t(count_));
+    X_.resize(size_t(count_));
     force_.resize(size_t(count_));
     keys_.resize(size_t(count_));
     order_.resize(size_t(count_));
@@ -111,12 +147,23 @@ class Contact {
   // of the touching particles change like under a load. The sums (time-step
   // bound, work, rigid-body forces) stay in `results` until collect().
   void apply(const Kinematics<D, Real>& view, double t, double dt, DeviceResults<B>& results) {
+    apply(&view, t, dt, results);
+  }
+
+  // views[q]: part q's fields, every part at the same point of the same step.
+  void apply(const Kinematics<D, Real>* views, double t, double dt, DeviceResults<B>& results) {
     if (!enabled_ || count_ == 0) return;
     place_rigid_bodies(t, dt);
-    parallel_for<B>(
-        count_, ContactCandidateFunctor<D, Real>{particles_, raw(particle_), view.reference_position, view.displacement,
-                                                 view.velocity, view.acceleration, Real(dt), raw(marker_position_),
-                                                 raw(group_), first_rigid_group_, raw(placement_), raw(x_), raw(v_)});
+    auto candidates = [&](Index first, Index end, const Kinematics<D, Real>& view, Index launch) {
+      if (launch > 0)
+        parallel_for<B>(launch, ContactCandidateFunctor<D, Real>{
+                                    first, end, raw(particle_), view.reference_position, view.displacement,
+                                    view.velocity, view.acceleration, Real(dt), raw(marker_position_), raw(group_),
+                                    first_rigid_group_, raw(placement_), raw(x_), raw(v_), raw(X_)});
+    };
+    for (size_t q = 0; q + 1 < part_begin_.size(); ++q)
+      candidates(part_begin_[q], part_begin_[q + 1], views[q], part_begin_[q + 1] - part_begin_[q]);
+    candidates(particles_, particles_, views[0], count_ - particles_);  // the markers
     const ContactHashGrid<D, Real> grid = make_grid();
     parallel_for<B>(count_, ContactKeyFunctor<D, Real>{grid, raw(x_), raw(keys_)});
     sequence<B, Index>(order_);
@@ -130,8 +177,7 @@ class Contact {
                                          raw(order_),
                                          raw(x_),
                                          raw(v_),
-                                         view.reference_position,
-                                         raw(particle_),
+                                         raw(X_),
                                          raw(mass_),
                                          raw(group_),
                                          raw(groups_),
@@ -144,7 +190,8 @@ class Contact {
     for (const Span& s : body_spans_)
       pending_.body.push_back(results.reduce(s.begin, s.end,
                                              ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_),
-                                                                          Real(dt), view.velocity, view.acceleration},
+                                                                          Real(dt), views[s.part].velocity,
+                                                                          views[s.part].acceleration},
                                              ContactSums<Real>::zero(), ContactSumsCombine{}));
     for (const Span& s : rigid_spans_)
       pending_.rigid.push_back(results.reduce(s.begin, s.end, ContactForceSumFunctor<D, Real>{raw(force_)},
@@ -191,8 +238,9 @@ class Contact {
 
  private:
   struct Span {
-    size_t index;  // body or rigid body
+    size_t index;  // scene body or rigid body
     Index begin, end;
+    size_t part;  // the particle set of a body
   };
   // This step's sums, waiting in DeviceResults.
   struct Pending {
@@ -259,12 +307,13 @@ class Contact {
   int first_rigid_group_ = 0;
   size_t cells_ = 0;
   std::vector<Span> body_spans_, rigid_spans_;
+  std::vector<Index> part_begin_{0};  // part q's candidates are [part_begin_[q], part_begin_[q + 1])
   std::vector<std::string> rigid_names_;
   std::vector<RigidBodyMotion> motion_;
   std::vector<Point3> rigid_force_;
   std::vector<double> work_;
   DeviceVector<B, Index> particle_, order_, start_, end_;
-  DeviceVector<B, Vec<D, Real>> marker_position_, x_, v_, force_;
+  DeviceVector<B, Vec<D, Real>> marker_position_, x_, v_, X_, force_;
   DeviceVector<B, Real> mass_;
   DeviceVector<B, int> group_;
   DeviceVector<B, ContactGroup<Real>> groups_;
