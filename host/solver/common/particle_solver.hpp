@@ -37,6 +37,23 @@ class ParticleSolver : public Solver {
       : scene_(scene), init_(init), options_(options), particles_(Index(init.size())) {}
 
   void limit_next_dt(double dt_max) override { dt_next_ = std::min(dt_next_, dt_max); }
+
+  // A step in two halves around the contact, so that the solvers of a scene
+  // of two methods (host/solver/coupled/) meet there with the same dt: the
+  // first ends after this solver's own contact, the second takes the loads,
+  // the boundary conditions and the advance to the end of the step.
+  void step() override {
+    begin_step();
+    end_step();
+  }
+  virtual void begin_step() = 0;
+  virtual void end_step() = 0;
+  // The fields the contact between two solvers reads and changes, and the
+  // candidates this solver offers it (scene.contact's bodies).
+  Kinematics<D, Real> contact_view() { return kinematics(); }
+  const ContactPartSetup<Real>& contact_part() const { return contact_part_; }
+  // The acoustic CFL number of this solver's time step.
+  double cfl() const { return scene_.solver.cfl; }
   double time() const override { return time_; }
   double next_dt() const override { return dt_next_; }
   long steps() const override { return steps_; }
@@ -271,6 +288,25 @@ class ParticleSolver : public Solver {
     report_.bytes_per_particle = n ? (double(particles_.bytes()) + pair_bytes) / n : 0;
   }
 
+  // Contact: `near_surface` marks the particles that can touch (the method's
+  // choice). The solver's own contact runs when it has partners (two bodies,
+  // a rigid body or self-contact); the part is kept for the contact with
+  // another method's solver.
+  void setup_contact(std::vector<unsigned char> near_surface) {
+    const ContactSpec& spec = scene_.contact;
+    if (!spec.enabled) return;
+    contact_part_ = ContactPartSetup<Real>{{}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(field::volume)),
+                                           std::move(near_surface)};
+    size_t in_contact = 0;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      contact_part_.scene_body.push_back(b);
+      contact_part_.props.push_back(props(b));
+      in_contact += std::count(spec.bodies.begin(), spec.bodies.end(), scene_.bodies[b].name);
+    }
+    if (in_contact >= 2 || !spec.self_contact.empty() || !spec.rigid_bodies.empty())
+      contact_.setup(scene_, init_.rigid_markers, {contact_part_}, false);
+  }
+
   // The work of conditions, walls, clamps and contact on body b.
   void add_shared_work(size_t b, BodyEnergy& e) const {
     e.external_work = conditions_.external_work(b);
@@ -360,6 +396,7 @@ class ParticleSolver : public Solver {
   std::vector<BodyRange> ranges_;
   Conditions<B, D, Real> conditions_;
   Contact<B, D, Real> contact_;
+  ContactPartSetup<Real> contact_part_;
   std::vector<std::pair<std::string, const char*>> snapshot_fields_;  // output name, particle field
   DeviceVector<B, Index> probe_index_;  // all probes' particles, probe k at [offsets[k], offsets[k+1])
   std::vector<size_t> probe_offsets_{0};
@@ -376,6 +413,9 @@ class ParticleSolver : public Solver {
   SetupReport report_;
   double time_ = 0, dt_next_ = 0;
   long steps_ = 0;
+  // The step between begin_step() and end_step(): its dt and the host round trips before it.
+  double step_dt_ = 0;
+  long round_trips_before_ = 0;
 };
 
 }  // namespace mfsd

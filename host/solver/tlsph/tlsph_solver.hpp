@@ -193,8 +193,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
         near_surface[size_t(i)] = 1;
         for (PairIndex k = offsets[size_t(i)]; k < offsets[size_t(i) + 1]; ++k) near_surface[size_t(neighbor[k])] = 1;
       }
-      contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)),
-                     near_surface);
+      this->setup_contact(std::move(near_surface));
     }
     {
       std::vector<double> density, viscosity;
@@ -250,10 +249,9 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     this->report_particles_and_pairs(to_host<B>(pairs_.offsets), pair_bytes);
   }
 
-  void step() override {
-    const long round_trips_before = round_trips();
-    const Index n = particles_.size();
-    const double dt = dt_next_;
+  void begin_step() override {
+    this->round_trips_before_ = round_trips();
+    const double dt = this->step_dt_ = dt_next_;
     const Real half_dt = Real(0.5 * dt);
     results_.clear();
     run("stress", [&] {
@@ -270,6 +268,12 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
         for (auto& k : bodies_) k->phase_field_half_step(v_, half_dt);
       });
     if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt, results_); });
+  }
+
+  void end_step() override {
+    const Index n = particles_.size();
+    const double dt = this->step_dt_;
+    const Real half_dt = Real(0.5 * dt);
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1, results_); });
     if (relaxation_.enabled()) run("relaxation", [&] { relaxation_.apply(v_, time_, dt, results_); });
@@ -294,7 +298,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       update_time_step(stats);
     });
     clock_.collect(timers_);
-    timers_.add_round_trips(round_trips() - round_trips_before);
+    timers_.add_round_trips(round_trips() - this->round_trips_before_);
   }
 
   void save_state(StateArchive& a) override {

@@ -118,10 +118,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
     if (scene_.contact.enabled) {
       // Every particle of a body in contact is a candidate: its surface moves.
-      std::vector<BodyProperties> body_props;
-      for (size_t b = 0; b < scene_.bodies.size(); ++b) body_props.push_back(props(b));
-      contact_.setup(scene_, init_, ranges_, body_props, to_host<B>(particles_.template buffer<Real>(field::volume)),
-                     std::vector<unsigned char>(size_t(n), 1));
+      this->setup_contact(std::vector<unsigned char>(size_t(n), 1));
     }
     this->locate_probes(where);
     results_.clear();
@@ -143,10 +140,10 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
                                          double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)));
   }
 
-  void step() override {
-    const long round_trips_before = round_trips();
+  void begin_step() override {
+    this->round_trips_before_ = round_trips();
     const Index n = particles_.size();
-    const double dt = dt_next_;
+    const double dt = this->step_dt_ = dt_next_;
     const Real half_dt = Real(0.5 * dt);
     results_.clear();
     // The pair data of a rebuild are those of the half-step positions, at
@@ -172,8 +169,15 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) force(b, pairs, Real(dt));
       parallel_for<B>(n, ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
     });
+    if (contact_.enabled()) run("contact", [&] { contact_.apply(this->kinematics(), time_, dt, results_); });
+  }
+
+  void end_step() override {
+    const Index n = particles_.size();
+    const double dt = this->step_dt_;
+    const Real half_dt = Real(0.5 * dt);
+    const PairList<D, Real> pairs = pair_list();
     const Kinematics<D, Real> k = this->kinematics();
-    if (contact_.enabled()) run("contact", [&] { contact_.apply(k, time_, dt, results_); });
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
     ResultSlot<StepStatistics<Real>> stats_slot;
@@ -211,7 +215,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       if (!single) dt_next_ = std::min(dt_next_, advection_step_ - advection_elapsed_);
     });
     this->clock_.collect(this->timers_);
-    this->timers_.add_round_trips(round_trips() - round_trips_before);
+    this->timers_.add_round_trips(round_trips() - this->round_trips_before_);
   }
 
   EnergySample energies() override {
