@@ -9,7 +9,9 @@ namespace mfsd {
   std::unique_ptr<Solver> make_tlsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
                                                                  const SolverOptions&);                 \
   std::unique_ptr<Solver> make_ulsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
-                                                                 const SolverOptions&);
+                                                                 const SolverOptions&);                 \
+  std::unique_ptr<Solver> make_coupled_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
+                                                                   const SolverOptions&);
 MFSD_DECLARE(cpu, 2, float)
 MFSD_DECLARE(cpu, 2, double)
 MFSD_DECLARE(cpu, 3, float)
@@ -33,6 +35,10 @@ std::unique_ptr<Solver> make_solver(const Scene& given, const InitialParticles& 
   const int d = scene.dimension;
   if (o.backend == "cpu") {
     if (o.threads > 0) omp_set_num_threads(o.threads);
+    if (mixed_methods(scene)) {
+      if (d == 2) return single ? make_coupled_cpu_2d_float(scene, p, o) : make_coupled_cpu_2d_double(scene, p, o);
+      return single ? make_coupled_cpu_3d_float(scene, p, o) : make_coupled_cpu_3d_double(scene, p, o);
+    }
     if (scene.solver.method == Method::ulsph) {
       if (d == 2) return single ? make_ulsph_cpu_2d_float(scene, p, o) : make_ulsph_cpu_2d_double(scene, p, o);
       return single ? make_ulsph_cpu_3d_float(scene, p, o) : make_ulsph_cpu_3d_double(scene, p, o);
@@ -45,6 +51,10 @@ std::unique_ptr<Solver> make_solver(const Scene& given, const InitialParticles& 
     if (cuda_device_count() <= 0)
       throw UsageError("--backend cuda: this machine has no usable CUDA device (" + cuda_device_name() +
                        "); use --backend cpu");
+    if (mixed_methods(scene)) {
+      if (d == 2) return single ? make_coupled_cuda_2d_float(scene, p, o) : make_coupled_cuda_2d_double(scene, p, o);
+      return single ? make_coupled_cuda_3d_float(scene, p, o) : make_coupled_cuda_3d_double(scene, p, o);
+    }
     if (scene.solver.method == Method::ulsph) {
       if (d == 2) return single ? make_ulsph_cuda_2d_float(scene, p, o) : make_ulsph_cuda_2d_double(scene, p, o);
       return single ? make_ulsph_cuda_3d_float(scene, p, o) : make_ulsph_cuda_3d_double(scene, p, o);
