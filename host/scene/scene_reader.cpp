@@ -1,5 +1,6 @@
 #include "host/scene/scene_reader.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -616,7 +617,8 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
   }
 
   if (scene.solver.method == Method::tlsph && doc.contains("solver") && doc["solver"].is_object() &&
-      doc["solver"].contains("ulsph") && !mixed_methods(scene))
+      doc["solver"].contains("ulsph") &&
+      std::none_of(scene.bodies.begin(), scene.bodies.end(), [](const BodySpec& b) { return b.method == Method::ulsph; }))
     throw SceneError("/solver/ulsph", "ULSPH settings in a scene without ULSPH bodies",
                      "solver.method \"ulsph\" or bodies[].method \"ulsph\", or no solver.ulsph");
 

@@ -137,6 +137,13 @@ TEST_F(Restart, UlsphPlateContinuesBitForBit) {
                             "--set solver.end_time=0.02 --set output.interval=0.005", 707);
 }
 
+// Both methods (host/solver/coupled/): each solver's state under its method's
+// prefix and the contact between them; 190 stops while the rings touch.
+TEST_F(Restart, MixedMethodsContinueBitForBit) {
+  expect_restart_reproduces(scene("colliding_rings_mixed_2d.json"),
+                            "--set constants.dp=0.002 --set solver.end_time=0.004 --set output.interval=0.001", 190);
+}
+
 // The phase field, its history and rate are particle fields like the others.
 TEST_F(Restart, FractureContinuesBitForBit) { expect_restart_reproduces(scene("notched_bar_2d.json"), "", 301); }
 

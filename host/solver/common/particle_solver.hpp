@@ -52,6 +52,10 @@ class ParticleSolver : public Solver {
   // candidates this solver offers it (scene.contact's bodies).
   Kinematics<D, Real> contact_view() { return kinematics(); }
   const ContactPartSetup<Real>& contact_part() const { return contact_part_; }
+  // The sums of the step in progress: what is reduced into them between
+  // begin_step() and end_step() comes to the host with the step's own, in its
+  // one synchronisation, and can be read after end_step().
+  DeviceResults<B>& step_results() { return results_; }
   // The acoustic CFL number of this solver's time step.
   double cfl() const { return scene_.solver.cfl; }
   double time() const override { return time_; }

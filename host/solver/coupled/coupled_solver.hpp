@@ -57,7 +57,6 @@ class CoupledSolver : public Solver {
     const long round_trips_before = round_trips();
     const double dt = next_dt();
     for (auto& s : solvers_) s->limit_next_dt(dt);
-    results_.clear();
     size_t q = 0;
     try {
       for (q = 0; q < kParts; ++q) solvers_[q]->begin_step();
@@ -66,13 +65,13 @@ class CoupledSolver : public Solver {
         clock_.start(id);
         const std::array<Kinematics<D, Real>, kParts> views{solvers_[0]->contact_view(),
                                                              solvers_[1]->contact_view()};
-        between_.apply(views.data(), time(), dt, results_);
-        results_.fetch();
-        between_.collect(results_);
+        // Its sums travel with the last solver's (no host wait of its own).
+        between_.apply(views.data(), time(), dt, solvers_[kParts - 1]->step_results());
         clock_.stop(id, own_timers_);
         clock_.collect(own_timers_);
       }
       for (q = 0; q < kParts; ++q) solvers_[q]->end_step();
+      between_.collect(solvers_[kParts - 1]->step_results());
     } catch (const NumericalFailure& f) {
       // The part's particle id in the whole scene's numbering.
       const long id = f.particle_id();
@@ -297,7 +296,6 @@ class CoupledSolver : public Solver {
   std::vector<std::vector<Point3>> rigid_markers_;
   std::array<std::unique_ptr<Part>, kParts> solvers_;
   Contact<B, D, Real> between_;
-  DeviceResults<B> results_;
   StageClock<B> clock_;
   StageTimers own_timers_, timers_;
   long round_trips_ = 0;
