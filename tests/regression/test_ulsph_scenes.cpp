@@ -11,7 +11,8 @@
 // the polar moment I = sum m |x|^2 from the particles. The plate stretches
 // until I = 68.6 (3 % above the start; the TLSPH run of the same plate gives
 // 68.5) and then spins at omega = L / I = 101.9 rad/s, as the TLSPH run does.
-// With the pair data of the step's start instead of its half step, the plate
+// With the pair data of the step's start instead of its half step (a
+// development build before fa775d0; no present option), the plate
 // crept outwards (I = 81.5 at t = 0.2 s) and gained 9 % of L; with dual
 // stepping and the pair data frozen over the advection step, I = 83.1 and
 // +9.8 % (theory.md).
