@@ -205,10 +205,16 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       // Dual criteria (seed 002 eq. 28-29): acoustic steps until the advection
       // step is covered, then a new advection step with a neighbour rebuild.
       advection_elapsed_ += dt;
+      // The bound of eq. 28 itself, for speeds that grow within the advection
+      // step (a plate at rest when a projectile strikes it has dt_adv = inf
+      // with U_ref = 0): no particle moves more than C_adv h between searches.
+      advection_travelled_ += dt * std::sqrt(double(stats.max_speed2));
       const bool single = !scene_.solver.ulsph.dual_time_stepping;
-      rebuild_due_ = single || advection_elapsed_ >= advection_step_ * (1.0 - 1e-12);
+      rebuild_due_ = single || advection_elapsed_ >= advection_step_ * (1.0 - 1e-12) ||
+                     advection_travelled_ > advection_reach() * (1.0 + 1e-9);
       if (rebuild_due_) {
         advection_elapsed_ = 0;
+        advection_travelled_ = 0;
         advection_step_ = advection_step(stats);
       }
       dt_next_ = acoustic_step(stats);
@@ -243,6 +249,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     a.put("solver/gravity_at_start", gravity_at_start_);
     a.put_value("ulsph/advection_step", advection_step_);
     a.put_value("ulsph/advection_elapsed", advection_elapsed_);
+    a.put_value("ulsph/advection_travelled", advection_travelled_);
     a.put_value("ulsph/rebuild_due", rebuild_due_ ? 1L : 0L);
     a.put("ulsph/offsets", to_host<B>(offsets_));
     a.put("ulsph/neighbor", to_host<B>(neighbor_));
@@ -257,6 +264,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     gravity_at_start_ = a.get<double>("solver/gravity_at_start", long(scene_.bodies.size()));
     advection_step_ = a.get_value<double>("ulsph/advection_step");
     advection_elapsed_ = a.get_value<double>("ulsph/advection_elapsed");
+    // (Checkpoints written before this bound was kept: none travelled.)
+    advection_travelled_ = a.has("ulsph/advection_travelled") ? a.get_value<double>("ulsph/advection_travelled") : 0;
     rebuild_due_ = a.get_value<long>("ulsph/rebuild_due") != 0;
     boxes_ = host_boxes();
     const auto offsets = a.get<PairIndex>("ulsph/offsets", long(particles_.size()) + 1);
@@ -520,9 +529,13 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   double advection_step(const StepStatistics<Real>& s) {
     const double speed = std::max(scene_.solver.ulsph.reference_speed, std::sqrt(double(s.max_speed2)));
     if (!(speed > 0)) return std::numeric_limits<double>::infinity();
+    return advection_reach() / speed;
+  }
+  // C_adv h, the smallest h of the bodies.
+  double advection_reach() {
     double h = std::numeric_limits<double>::infinity();
     for (size_t b = 0; b < scene_.bodies.size(); ++b) h = std::min(h, props(b).h);
-    return scene_.solver.ulsph.advection_cfl * h / speed;
+    return scene_.solver.ulsph.advection_cfl * h;
   }
 
   // Finite and inside the bounds: the density was not (the pressure then is not either).
@@ -543,6 +556,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   bool has_loads_ = false;
   bool rebuild_due_ = false;
   double advection_step_ = 0, advection_elapsed_ = 0;
+  double advection_travelled_ = 0;  // sum dt |v|max since the last search
   std::vector<double> gravity_at_start_;
 };
 
