@@ -249,7 +249,7 @@ TEST(UlsphBendingColumn, FirstSwingMatchesTheResolvedTlsphColumn) {
 // High-velocity impact (configs/projectile_impact_ulsph_2d.json, seed 002
 // section 5.8) at dp = 0.4 mm: an aluminium disc at 3100 m/s perforates a
 // 2 mm plate. Measured at 8 us: the projectile's particles move on at a mean
-// 2475 m/s (2501 and 2498 at dp = 0.2 and 0.1 mm), the debris cloud's front
+// 2475 m/s (2501 and 2499 at dp = 0.2 and 0.1 mm), the debris cloud's front
 // is at x = 21.41 mm, the hole in the plate reaches |y| = 9.52 mm; momentum
 // kept to round-off; the balance (kinetic, stored, plastic and the
 // numerical forces' work) ends 0.9 % above the start
