@@ -109,6 +109,29 @@ def spin_history(outdir):
     return rows
 
 
+OMEGA = 105.0  # rad/s, configs/spinning_plate_ulsph_2d.json
+
+
+def corner_against_rotation(probes, times=(0.001, 0.002, 0.005, 0.01, 0.05, 0.2)):
+    """The corner probe against the rigid rotation of the seed's Fig. 19:
+    x = R(omega t) X0, v = omega e_z ^ x; errors relative to |X0| and omega |X0|
+    at the probe rows nearest `times`."""
+    import math
+    t = probes["time"]
+    X0 = (probes["corner.position.x"][0], probes["corner.position.y"][0])
+    r0 = math.hypot(*X0)
+    out = []
+    for want in times:
+        k = min(range(len(t)), key=lambda i: abs(t[i] - want))
+        c, s = math.cos(OMEGA * t[k]), math.sin(OMEGA * t[k])
+        x = (c * X0[0] - s * X0[1], s * X0[0] + c * X0[1])
+        v = (-OMEGA * x[1], OMEGA * x[0])
+        dx = math.hypot(probes["corner.position.x"][k] - x[0], probes["corner.position.y"][k] - x[1])
+        dv = math.hypot(probes["corner.velocity.x"][k] - v[0], probes["corner.velocity.y"][k] - v[1])
+        out.append({"t": t[k], "position_error": dx / r0, "velocity_error": dv / (OMEGA * r0)})
+    return out
+
+
 def spinning(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -128,9 +151,12 @@ def spinning(args):
         h = spin_history(out)
         t = [r[0] for r in h]
         L0 = h[0][1]
+        rigid = corner_against_rotation(probes)
         result["cases"].append({"case": name, "L_change": h[-1][1] / L0 - 1, "I_end": h[-1][2],
-                                "omega_end": h[-1][1] / h[-1][2], "t_end": t[-1]})
-        print(f"{name}: L {100 * (h[-1][1] / L0 - 1):+.2f} %, I = {h[-1][2]:.2f}, omega = {h[-1][1] / h[-1][2]:.2f}")
+                                "omega_end": h[-1][1] / h[-1][2], "t_end": t[-1], "corner_vs_rigid_rotation": rigid})
+        print(f"{name}: L {100 * (h[-1][1] / L0 - 1):+.2f} %, I = {h[-1][2]:.2f}, omega = {h[-1][1] / h[-1][2]:.2f}; "
+              "corner against the rigid rotation (t [ms]: position, velocity error / |X0|, / omega |X0|): " +
+              ", ".join(f"{1e3 * r['t']:g}: {r['position_error']:.1e} {r['velocity_error']:.1e}" for r in rigid))
         ax[0].plot(t, [r[1] / L0 for r in h], label=name)
         ax[1].plot(t, [r[2] for r in h], label=name)
         r = [(x * x + y * y) ** 0.5 for x, y in zip(probes["corner.position.x"], probes["corner.position.y"])]
