@@ -2,11 +2,13 @@
 
 #include <sys/stat.h>
 #include <unistd.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -19,6 +21,7 @@
 #include "host/driver/progress.hpp"
 #include "host/driver/run_checkpoint.hpp"
 #include "host/driver/run_report.hpp"
+#include "host/driver/thread_governor.hpp"
 #include "host/output/checkpoint_file.hpp"
 #include "host/output/csv_writer.hpp"
 #include "host/output/pvd_index.hpp"
@@ -297,6 +300,23 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   double step_seconds = 0;
   long session_steps = 0;
   const auto t_loop = Clock::now();
+  // CPU runs whose thread count nobody fixed: the governor chooses it.
+  std::optional<ThreadGovernor> governor;
+  if (options.solver.backend == "cpu") {
+    status.threads = options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads();
+    if (options.solver.threads == 0 && !std::getenv("OMP_NUM_THREADS") && status.threads > 1) {
+      governor.emplace(status.threads, [](int n) { omp_set_num_threads(n); });
+      status.governed = true;
+    }
+  }
+  auto governed_step = [&](double seconds) {
+    if (!governor) return;
+    governor->step_done(seconds);
+    if (governor->changes().size() != status.thread_changes.size()) {
+      status.thread_changes.clear();
+      for (const auto& c : governor->changes()) status.thread_changes.emplace_back(c.step, c.threads);
+    }
+  };
   try {
     while (solver->time() < end_time - eps && (options.max_steps <= 0 || solver->steps() < options.max_steps) &&
            !interrupt_signal()) {
@@ -305,6 +325,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       solver->step();
       ++session_steps;
       const double seconds = seconds_since(t0);
+      governed_step(seconds);
       if (session_steps > options.warmup_steps) {
         step_seconds += seconds;
         status.step_times.push_back(seconds);

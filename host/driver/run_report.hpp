@@ -23,6 +23,11 @@ struct RunStatus {
   double setup_seconds = 0, step_seconds = 0, output_seconds = 0, wall_seconds = 0;
   long warmup_steps = 0;           // steps before timing started
   std::vector<double> step_times;  // wall seconds of each timed step
+  // CPU: the thread count at the start and, when the governor chose it
+  // (thread_governor.hpp), every count it ran with as (step, threads).
+  int threads = 0;
+  bool governed = false;
+  std::vector<std::pair<long, int>> thread_changes;
 };
 
 Json machine_description();
