@@ -46,6 +46,22 @@ Json machine_description() {
   return m;
 }
 
+namespace {
+
+// CPU threads: the start's count and, when the governor chose it, every count it ran with.
+void put_threads(Json& j, const RunOptions& options, const RunStatus& status) {
+  j["threads"] = options.solver.backend != "cpu" ? 0
+                 : status.threads > 0           ? status.threads
+                 : (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads());
+  if (status.governed) {
+    Json changes = Json::array();
+    for (const auto& [step, n] : status.thread_changes) changes.push_back(Json::array({step, n}));
+    j["thread_governor"] = {{"changes", changes}};
+  }
+}
+
+}  // namespace
+
 void write_run_json(const std::string& dir, const SceneDocument& doc, const RunOptions& options,
                     const SetupReport& setup, const RunStatus& status) {
   Json j;
@@ -55,14 +71,7 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
   j["command"] = options.command_line;
   j["scene_file"] = doc.source_name;
   j["backend"] = options.solver.backend;
-  j["threads"] = options.solver.backend != "cpu" ? 0
-                 : status.threads > 0           ? status.threads
-                 : (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads());
-  if (status.governed) {
-    Json changes = Json::array();
-    for (const auto& [step, n] : status.thread_changes) changes.push_back(Json::array({step, n}));
-    j["thread_governor"] = {{"changes", changes}};
-  }
+  put_threads(j, options, status);
   j["precision"] = to_string(options.solver.precision);
   j["dimension"] = doc.scene.dimension;
   if (doc.scene.dimension == 3 && doc.scene.solver.hourglass == HourglassControl::genog)
@@ -134,14 +143,7 @@ void write_timing_json(const std::string& dir, const SetupReport& setup, const S
   j["round_trips_per_step"] = timed > 0 ? double(timers.round_trips()) / double(timed) : 0.0;
   j["bytes_per_particle"] = setup.bytes_per_particle;
   j["backend"] = options.solver.backend;
-  j["threads"] = options.solver.backend != "cpu" ? 0
-                 : status.threads > 0           ? status.threads
-                 : (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads());
-  if (status.governed) {
-    Json changes = Json::array();
-    for (const auto& [step, n] : status.thread_changes) changes.push_back(Json::array({step, n}));
-    j["thread_governor"] = {{"changes", changes}};
-  }
+  put_threads(j, options, status);
   j["precision"] = to_string(options.solver.precision);
   Json stages = Json::array();
   const double total = timers.total();

@@ -66,26 +66,16 @@ def rings(args, a):
 
 def projectile(args, ax):
     import numpy as np
-    import vtu
+    import ulsph
     cases = []
     for dp in (0.0004, 0.0002):
         for label, config in PROJECTILE:
             out = os.path.join(OUT, f"projectile_{label.replace(' + ', '_')}_dp{dp}")
             _, e, timing = m.run_and_read(config, {"constants.dp": dp}, out, args.threads, args.reuse)
-            t_end, path = vtu.snapshots(out)[-1]
-            d = vtu.read_vtu(path)
-            x, body, v = np.asarray(d["points"]), np.asarray(d["body"]), np.asarray(d["velocity"])
-            proj = body == 0
-            plate = x[~proj]
-            in_plate = (plate[:, 0] > -dp) & (plate[:, 0] < 0.002 + dp)
-            p0 = e["projectile.momentum.x"][0]
-            case = {"case": label, "dp": dp, "particles": timing.get("particles"), "steps": timing.get("steps"),
-                    "wall_seconds": timing.get("wall_seconds"), "t": t_end,
-                    "projectile_residual_velocity": float(np.mean(v[proj, 0])),
-                    "debris_front_x": float(x[:, 0].max()),
-                    "hole_half_height": float(np.min(np.abs(plate[in_plate, 1]))),
-                    "momentum_error": max(abs(px - e["momentum.x"][0]) for px in e["momentum.x"]) / p0,
-                    "balance_end": e["balance"][-1] / e["balance"][0]}
+            case, d = ulsph.projectile_case(out, dp, e, timing)
+            case = dict({"case": label}, **case)
+            t_end = case["t"]
+            x, proj = np.asarray(d["points"]), np.asarray(d["body"]) == 0
             cases.append(case)
             print(f"projectile {label} dp = {dp * 1e3:g} mm: residual velocity "
                   f"{case['projectile_residual_velocity']:.0f} m/s, debris front {1e3 * case['debris_front_x']:.2f} mm, "

@@ -268,6 +268,31 @@ def column(args):
     m.write_study(os.path.join(DOCS, "ulsph_column"), result, fig)
 
 
+def projectile_case(out, dp, e, timing):
+    """The perforation figures of a finished projectile run (its last
+    snapshot; the projectile is body 0, the 2 mm plate starts at x = 0):
+    (case dict, the snapshot)."""
+    import numpy as np
+    import vtu
+    t_end, path = vtu.snapshots(out)[-1]
+    d = vtu.read_vtu(path)
+    x, body, v = np.asarray(d["points"]), np.asarray(d["body"]), np.asarray(d["velocity"])
+    proj = body == 0
+    plate_now = x[~proj]
+    # The hole: the smallest |y| of a plate particle still within the plate's thickness.
+    in_plate = (plate_now[:, 0] > -dp) & (plate_now[:, 0] < 0.002 + dp)
+    total0 = e["balance"][0]
+    case = {"dp": dp, "particles": timing.get("particles"), "steps": timing.get("steps"),
+            "wall_seconds": timing.get("wall_seconds"), "t": t_end,
+            "projectile_residual_velocity": float(np.mean(v[proj, 0])),
+            "debris_front_x": float(x[:, 0].max()),
+            "hole_half_height": float(np.min(np.abs(plate_now[in_plate, 1]))),
+            "momentum_error": max(abs(px - e["momentum.x"][0]) for px in e["momentum.x"]) / e["projectile.momentum.x"][0],
+            "plastic_share": e["plastic"][-1] / total0, "numerical_share": e["damping"][-1] / total0,
+            "balance_end": e["balance"][-1] / total0}
+    return case, d
+
+
 def projectile(args):
     import matplotlib
     matplotlib.use("Agg")
@@ -281,24 +306,8 @@ def projectile(args):
     for a, dp in zip(ax, spacings):
         out = os.path.join(OUT, f"projectile_dp{dp}")
         _, e, timing = m.run_and_read(config, {"constants.dp": dp}, out, args.threads, args.reuse)
-        t_end, path = vtu.snapshots(out)[-1]
-        d = vtu.read_vtu(path)
-        x, body = np.asarray(d["points"]), np.asarray(d["body"])
-        v = np.asarray(d["velocity"])
-        proj = body == 0
-        plate_now = x[~proj]
-        # The hole: the smallest |y| of a plate particle still within the plate's thickness.
-        in_plate = (plate_now[:, 0] > -dp) & (plate_now[:, 0] < 0.002 + dp)
-        hole = float(np.min(np.abs(plate_now[in_plate, 1])))
-        p0 = e["projectile.momentum.x"][0]
-        drift = max(abs(px - e["momentum.x"][0]) for px in e["momentum.x"]) / p0
-        total0 = e["balance"][0]
-        case = {"dp": dp, "particles": timing.get("particles"), "steps": timing.get("steps"),
-                "wall_seconds": timing.get("wall_seconds"), "t": t_end,
-                "projectile_residual_velocity": float(np.mean(v[proj, 0])),
-                "debris_front_x": float(x[:, 0].max()), "hole_half_height": hole,
-                "momentum_error": drift, "plastic_share": e["plastic"][-1] / total0,
-                "numerical_share": e["damping"][-1] / total0, "balance_end": e["balance"][-1] / total0}
+        case, d = projectile_case(out, dp, e, timing)
+        x, hole, drift, t_end = np.asarray(d["points"]), case["hole_half_height"], case["momentum_error"], case["t"]
         result["cases"].append(case)
         print(f"dp = {dp * 1e3:g} mm: residual velocity {case['projectile_residual_velocity']:.0f} m/s, debris front "
               f"{1e3 * case['debris_front_x']:.2f} mm, hole half-height {1e3 * hole:.2f} mm, plastic "
