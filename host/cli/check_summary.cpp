@@ -86,7 +86,12 @@ std::string check_summary(const SceneDocument& doc, const InitialParticles& P) {
       o << "  " << (u.dual_time_stepping ? "dual-criteria" : "single-criterion") << " time stepping (advection CFL "
         << u.advection_cfl << ", reference speed " << u.reference_speed << " m/s), pair data "
         << (u.refresh_pairs ? "formed every step" : "frozen over the advection step") << ", J2 return "
-        << (u.remove_plastic_rate ? "seed" : "radial") << ", sound speed " << sound_speed << "\n";
+        << (u.remove_plastic_rate ? "seed" : "radial") << ", Riemann dissipation ";
+      if (u.riemann_limiter > 0)
+        o << "limited (eta " << u.riemann_limiter << ")";
+      else
+        o << "full";
+      o << ", sound speed " << sound_speed << "\n";
     } else {
       o << "  damping factor " << sv.damping_factor << " ("
         << (sv.damping_form == DampingForm::split ? "split" : "isotropic") << "), sound speed " << sound_speed

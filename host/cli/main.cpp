@@ -29,7 +29,7 @@ namespace {
 
 const char* kUsage =
     "mfsd " MFSD_VERSION
-    " - meshfree solid dynamics (total-Lagrangian SPH with hourglass control)\n"
+    " - meshfree solid dynamics (total- and updated-Lagrangian SPH with hourglass control)\n"
     "\n"
     "usage:\n"
     "  mfsd run [SCENE.json] [options]   run a scene (without SCENE: the built-in oscillating plate)\n"

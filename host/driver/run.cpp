@@ -92,7 +92,7 @@ void remove_previous_outputs(const std::string& dir) {
 
 // Files a killed run was writing (written under .tmp, then renamed).
 void remove_partial_files(const std::string& dir) {
-  for (const fs::path d : {fs::path(dir), fs::path(dir) / "snapshots"})
+  for (const fs::path& d : {fs::path(dir), fs::path(dir) / "snapshots"})
     if (fs::is_directory(d))
       for (auto& e : fs::directory_iterator(d))
         if (e.path().extension() == ".tmp") fs::remove(e.path());

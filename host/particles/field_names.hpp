@@ -43,7 +43,7 @@ inline constexpr const char* phase_field_next = "phase_field_next";    // s_{n+1
 // ULSPH (host/solver/ulsph/; kernels/ulsph/): the state and the stage fields.
 inline constexpr const char* mass = "mass";                                      // m = rho0 V0
 inline constexpr const char* density = "density";                                // rho
-inline constexpr const char* density_next = "density_next";                      // rho of a pass that reads rho
+inline constexpr const char* current_volume = "current_volume";  // V = m / rho at the step's start (pair refresh)
 inline constexpr const char* dissipated_work = "dissipated_work";  // J taken by the Riemann dissipation and GNOG
 inline constexpr const char* numerical_acceleration = "numerical_acceleration";  // Riemann + GNOG part of a
 inline constexpr const char* plastic_work = "plastic_work";        // J of plastic work (ULSPH J2)

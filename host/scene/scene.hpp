@@ -207,6 +207,7 @@ struct UlsphSpec {
   bool refresh_pairs = true;        // pair data at every step's positions between searches (theory.md)
   bool remove_plastic_rate = false;  // J2: radial return | the seed's rate without its plastic part first
   double xi = -1;                   // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
+  double riemann_limiter = 0;       // eta of the low-dissipation limiter (seed 002 ref. [38]); 0: none
   // solver.ulsph.hourglass, or solver.hourglass when ulsph is the scene's method.
   HourglassControl hourglass = HourglassControl::gnog;
 };

@@ -253,6 +253,7 @@ SolverSpec read_solver(JsonNode s, int dim) {
     spec.ulsph.refresh_pairs = u.boolean("refresh_pairs", true);
     spec.ulsph.remove_plastic_rate = u.choice("j2_return", {"radial", "seed"}, "radial") == "seed";
     if (u.has("xi")) spec.ulsph.xi = u.number("xi", Range::positive());
+    spec.ulsph.riemann_limiter = u.number("riemann_limiter", 0.0, Range::non_negative());
     u.finish();
   }
   if (spec.method == Method::ulsph && !hourglass_in_ulsph)

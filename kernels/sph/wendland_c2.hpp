@@ -42,6 +42,15 @@ struct WendlandC2 {
     const Real s = Real(1) - Real(0.5) * q;
     return -Real(5) * factor * inv_h * q * s * s * s;
   }
+
+  // dW/dr / r = -(5 a_d / h^2) (1 - q/2)^3 (<= 0): the pair data's factor
+  // without a division by r (finite at r = 0).
+  MFSD_HD Real dW_over_r(Real r) const {
+    const Real q = r * inv_h;
+    if (q >= Real(2)) return Real(0);
+    const Real s = Real(1) - Real(0.5) * q;
+    return -Real(5) * factor * inv_h * inv_h * s * s * s;
+  }
 };
 
 }  // namespace mfsd

@@ -44,6 +44,20 @@ MFSD_HD inline Vec<D, Real> non_affine_velocity(const Vec<D, Real>& v_i, const V
   return scaled_non_affine_velocity(v_i, v_j, L_i, L_j, grad, stretch) / stretch;
 }
 
+// One pair's bracket of eq. 29 and 35, (kappa_i + kappa_j) [v_tilde_ij stretch_ij],
+// projected on e_ij with GnogAngularMomentumConserving.
+template <int D, class Real, class Variant>
+MFSD_HD inline Vec<D, Real> gnog_pair_term(const Vec<D, Real>& v_i, const Vec<D, Real>& v_j, const Mat<D, Real>& L_i,
+                                           const Mat<D, Real>& L_j, const Vec<D, Real>& g, Real stretch, Real kappa_i,
+                                           Real kappa_j) {
+  Vec<D, Real> s = scaled_non_affine_velocity(v_i, v_j, L_i, L_j, g, stretch);
+  if constexpr (std::is_same<Variant, GnogAngularMomentumConserving>::value) {
+    const Real g2 = squared_norm(g);
+    s = g2 > Real(0) ? g * (dot(s, g) / g2) : Vec<D, Real>::zero();  // (s . e_ij) e_ij, formulations.md 3 (amc)
+  }
+  return s * (kappa_i + kappa_j);  // seed 002 eq. 35: (xi_i + xi_j) = xi (kappa_i + kappa_j)
+}
+
 // d a_h,i / dt = sum_j 1/2 (xi_i + xi_j) G v_tilde_ij dW_ij V_j / (rho_i r_ij)
 //             = xi G / (2 rho_i) sum_j (kappa_i + kappa_j) [v_tilde_ij stretch_ij]   (seed 002 eq. 29, 33, 35)
 // kappa may be null (elastic body: kappa = 1). With GnogAngularMomentumConserving
@@ -52,7 +66,6 @@ template <int D, class Real, class Variant = GnogStandard>
 MFSD_HD inline Vec<D, Real> gnog_penalty_rate(const PairList<D, Real>& pairs, const Vec<D, Real>* velocity,
                                               const Mat<D, Real>* velocity_gradient, const Real* kappa, Real xi,
                                               Real shear_modulus, Real rho_i, Index i) {
-  constexpr bool central = std::is_same<Variant, GnogAngularMomentumConserving>::value;
   const Vec<D, Real> v_i = velocity[i];
   const Mat<D, Real> L_i = velocity_gradient[i];
   const Real kappa_i = kappa ? kappa[i] : Real(1);
@@ -62,14 +75,8 @@ MFSD_HD inline Vec<D, Real> gnog_penalty_rate(const PairList<D, Real>& pairs, co
     const Index ahead = pairs.neighbor[k + kPairPrefetchDistance];
     prefetch(&velocity[ahead]);
     prefetch(&velocity_gradient[ahead]);
-    const Vec<D, Real> g = pairs.grad[k];
-    Vec<D, Real> s = scaled_non_affine_velocity(v_i, velocity[j], L_i, velocity_gradient[j], g, pairs.stretch[k]);
-    if constexpr (central) {
-      const Real g2 = squared_norm(g);
-      s = g2 > Real(0) ? g * (dot(s, g) / g2) : Vec<D, Real>::zero();  // (s . e_ij) e_ij, formulations.md 3 (amc)
-    }
-    const Real kappa_j = kappa ? kappa[j] : Real(1);
-    sum += s * (kappa_i + kappa_j);  // seed 002 eq. 35: (xi_i + xi_j) = xi (kappa_i + kappa_j)
+    sum += gnog_pair_term<D, Real, Variant>(v_i, velocity[j], L_i, velocity_gradient[j], pairs.grad[k],
+                                            pairs.stretch[k], kappa_i, kappa ? kappa[j] : Real(1));
   }
   return sum * (Real(0.5) * xi * shear_modulus / rho_i);  // seed 002 eq. 29: G / rho_i
 }

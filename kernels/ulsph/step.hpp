@@ -138,23 +138,50 @@ struct ForceFunctor {
   Vec<D, Real>* acceleration;
   NumericalWork<D, Real> work;  // writes a_num (its numerical_acceleration is written here)
   Real impedance;               // Z = rho0 c0
+  Real limiter;                 // eta / c0 of the Riemann dissipation's limiter; 0: none (pressure_force.hpp)
   Real xi;                // GNOG coefficient of the body
   Real shear_modulus;
   Real dt;
   Vec<D, Real> gravity;
 
+  // One pass over the row for the three pair sums, each summed as its own
+  // function does (pressure_acceleration, shear_acceleration,
+  // gnog_penalty_rate): the same numbers, one gather of each neighbour field.
   MFSD_HD void operator()(Index i) const {
+    constexpr bool gnog = !std::is_same<Variant, GnogNone>::value;
     const Real rho = density[i];
-    Vec<D, Real> a_d;  // the Riemann dissipation's part of a
-    Vec<D, Real> a = pressure_acceleration(pairs, velocity, pressure, rho, impedance, i, &a_d);  // seed 002 eq. 15
-    a += shear_acceleration(pairs, shear_stress, rho, i);                                        // seed 002 eq. 18
+    const Real p_i = pressure[i];
+    const Vec<D, Real> v_i = velocity[i];
+    const Real kappa_i = kappa ? kappa[i] : Real(1);
+    Mat<D, Real> L_i = Mat<D, Real>::zero();
+    if constexpr (gnog) L_i = velocity_gradient[i];
+    Vec<D, Real> sum_p = Vec<D, Real>::zero(), dissipation = Vec<D, Real>::zero(), sum_h = Vec<D, Real>::zero();
+    Vec<D, Real> sum_s = shear_stress[i] * pairs.gradient_sum[i];  // tau_i sum_j grad_ij
+    for (PairIndex k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k) {
+      const Index j = pairs.neighbor[k];
+      const Index ahead = pairs.neighbor[k + kPairPrefetchDistance];
+      prefetch(&velocity[ahead]);
+      prefetch(&pressure[ahead]);
+      prefetch(&shear_stress[ahead]);
+      if constexpr (gnog) prefetch(&velocity_gradient[ahead]);
+      const Vec<D, Real> g = pairs.grad[k];
+      const Vec<D, Real> v_j = velocity[j];
+      sum_p += g * (-(p_i + pressure[j]));                                      // seed 002 eq. 15: pressure
+      dissipation += riemann_dissipation_term(g, v_i - v_j, impedance, limiter);  // eq. 15-17: Riemann
+      sum_s += shear_stress[j] * g;                                             // eq. 18: tau_j grad_ij
+      if constexpr (gnog)
+        sum_h += gnog_pair_term<D, Real, Variant>(v_i, v_j, L_i, velocity_gradient[j], g, pairs.stretch[k], kappa_i,
+                                                  kappa ? kappa[j] : Real(1));  // eq. 29, 35
+    }
+    const Vec<D, Real> a_d = dissipation / rho;  // the Riemann dissipation's part of a
+    Vec<D, Real> a = (sum_p + dissipation) / rho;    // seed 002 eq. 15: 1/rho_i
+    a += sum_s / rho;                                // seed 002 eq. 18
     Vec<D, Real> a_numerical = a_d;
-    if constexpr (!std::is_same<Variant, GnogNone>::value) {
+    if constexpr (gnog) {
       Vec<D, Real> a_h = hourglass_acceleration[i];
       if constexpr (std::is_same<Variant, GnogAngularMomentumConserving>::value)
-        a_h = rotate_with_spin(a_h, velocity_gradient[i], dt);  // formulations.md 3: a_h turns with the spin
-      a_h += gnog_penalty_rate<D, Real, Variant>(pairs, velocity, velocity_gradient, kappa, xi, shear_modulus, rho, i) *
-             dt;  // seed 002 eq. 29: accumulated
+        a_h = rotate_with_spin(a_h, L_i, dt);  // formulations.md 3: a_h turns with the spin
+      a_h += sum_h * (Real(0.5) * xi * shear_modulus / rho) * dt;  // seed 002 eq. 29: G / rho_i, accumulated
       hourglass_acceleration[i] = a_h;
       a += a_h;
       a_numerical += a_h;

@@ -420,27 +420,35 @@ def rings(args):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    cases = [("rings 2-D", "configs/colliding_rings_ulsph_2d.json", dp, (65.88, 56.74)) for dp in (0.002, 0.001, 0.0005)]
-    cases += [("balls 3-D", "configs/colliding_balls_ulsph_3d.json", dp, (8.27, 8.16)) for dp in (0.003, 0.002)]
+    # eta: the low-dissipation limiter of seed 002's ref. [38] (solver.ulsph.riemann_limiter; 0: none, as shipped).
+    rings2, balls3 = ("rings 2-D", "configs/colliding_rings_ulsph_2d.json"), ("balls 3-D", "configs/colliding_balls_ulsph_3d.json")
+    cases = [(*rings2, dp, (65.88, 56.74), 0) for dp in (0.002, 0.001, 0.0005)]
+    cases += [(*balls3, dp, (8.27, 8.16), 0) for dp in (0.003, 0.002)]
+    cases += [(*rings2, dp, (65.88, 56.74), 3) for dp in (0.002, 0.001, 0.0005)]
+    cases += [(*balls3, dp, (8.27, 8.16), 3) for dp in (0.003, 0.002)]
     result = {"configs": sorted({c[1] for c in cases}), "machine": m.machine(), "cases": []}
     fig, ax = plt.subplots(1, 2, figsize=(13, 4.5))
-    for (name, config, dp, seed), a in [(c, ax[0] if c[0].startswith("rings") else ax[1]) for c in cases]:
-        out = os.path.join(OUT, f"{name.split()[0]}_dp{dp}")
-        _, e, timing = m.run_and_read(config, {"constants.dp": dp, "output.vtu": "false", "output.interval": 2e-4},
-                                      out, args.threads, args.reuse)
+    for (name, config, dp, seed, eta), a in [(c, ax[0] if c[0].startswith("rings") else ax[1]) for c in cases]:
+        out = os.path.join(OUT, f"{name.split()[0]}_dp{dp}" + (f"_eta{eta}" if eta else ""))
+        sets = {"constants.dp": dp, "output.vtu": "false", "output.interval": 2e-4}
+        if eta:
+            sets["solver.ulsph.riemann_limiter"] = eta
+        _, e, timing = m.run_and_read(config, sets, out, args.threads, args.reuse)
         t, total = e["time"], e["total"]
         p0 = e["left.momentum.x"][0]
         drift = max(abs(px) + abs(py) for px, py in zip(e["momentum.x"], e["momentum.y"])) / p0
-        case = {"case": name, "dp": dp, "particles": timing.get("particles"), "total_start": total[0],
+        case = {"case": name, "dp": dp, "riemann_limiter": eta, "particles": timing.get("particles"), "total_start": total[0],
                 "total_end": total[-1], "loss": 1 - total[-1] / total[0], "seed_loss": 1 - seed[1] / seed[0],
                 "least_total": min(total) / total[0], "momentum_error": drift,
                 "rebound": -e["left.momentum.x"][-1] / p0, "wall_seconds": timing.get("wall_seconds")}
         result["cases"].append(case)
-        print(f"{name} dp={dp}: total {total[0]:.3f} -> {total[-1]:.3f} ({-100 * case['loss']:+.1f} %, seed "
+        print(f"{name} dp={dp} eta={eta}: total {total[0]:.3f} -> {total[-1]:.3f} ({-100 * case['loss']:+.1f} %, seed "
               f"{-100 * case['seed_loss']:+.1f} %), rebound {case['rebound']:.3f}, momentum error {drift:.1e}")
-        line, = a.plot(t, [x / total[0] for x in total], label=f"total, dp = {dp * 1e3:g} mm")
-        a.plot(t, [x / total[0] for x in e["kinetic"]], "--", color=line.get_color(), lw=0.8)
-        a.plot(t, [x / total[0] for x in e["strain"]], ":", color=line.get_color(), lw=0.8)
+        label = f"total, dp = {dp * 1e3:g} mm" + (f", limiter eta = {eta}" if eta else "")
+        line, = a.plot(t, [x / total[0] for x in total], label=label, lw=1.6 if eta else 1.0)
+        if not eta:  # the limited runs: the total only, to keep the plot readable
+            a.plot(t, [x / total[0] for x in e["kinetic"]], "--", color=line.get_color(), lw=0.8)
+            a.plot(t, [x / total[0] for x in e["strain"]], ":", color=line.get_color(), lw=0.8)
     for a, (name, seed) in zip(ax, [("rings 2-D", (65.88, 56.74)), ("balls 3-D", (8.27, 8.16))]):
         a.axhline(seed[1] / seed[0], color="k", lw=0.8, label=f"seed 002 end of run ({seed[0]} -> {seed[1]})")
         a.set_title(f"{name}: total (solid), kinetic (dashed), stored (dotted)")

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "host/scene/scene_error.hpp"
 #include "scene_runner.hpp"
 
 using namespace mfsd;
@@ -206,6 +207,31 @@ TEST(UlsphCollidingRings, PartKeepingMomentumToRoundOff) {
   EXPECT_NEAR(balance1 / balance0, 1.0, 0.01);
   EXPECT_GT(taken, 0.15 * balance0);
   RecordProperty("energy_ratio", std::to_string(ratio));
+}
+
+// The rings as shipped (dp = 2 mm, head-on) with the full Riemann dissipation
+// and with the low-dissipation limiter of seed 002's ref. [38]
+// (solver.ulsph.riemann_limiter = 3): the dissipation takes most of the
+// loss. Measured: 0.798 of the total is left at 16 ms with the full
+// dissipation, 0.915 with the limiter (seed 002: 0.861 at dp = 1 mm, relaxed
+// particles; docs/validation.md). A negative eta is refused.
+TEST(UlsphCollidingRings, RiemannLimiterTakesLessEnergy) {
+  auto total_left = [](const std::vector<std::string>& sets) {
+    auto t = test::run_config("colliding_rings_ulsph_2d.json", sets, Precision::double_precision, 0, 100);
+    const EnergySample& e0 = t.energies.front();
+    const EnergySample& e1 = t.energies.back();
+    EXPECT_NEAR(e1.momentum[0], 0.0, 1e-12 * e0.bodies[0].momentum[0]);
+    EXPECT_LT(e1.bodies[0].momentum[0], -0.7 * e0.bodies[0].momentum[0]);  // rebounded
+    return (e1.kinetic + e1.strain) / (e0.kinetic + e0.strain);
+  };
+  EXPECT_NEAR(total_left({"constants.dp=0.002"}), 0.798, 0.01);
+  EXPECT_NEAR(total_left({"constants.dp=0.002", "solver.ulsph.riemann_limiter=3"}), 0.915, 0.01);
+  try {
+    test::load_config("colliding_rings_ulsph_2d.json", {"solver.ulsph.riemann_limiter=-1"});
+    ADD_FAILURE() << "a negative riemann_limiter was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("/solver/ulsph/riemann_limiter"), std::string::npos) << e.what();
+  }
 }
 
 // Hollow balls (configs/colliding_balls_ulsph_3d.json, seed 002 section 5.4)

@@ -117,13 +117,15 @@ void check(bool reorder) {
   EXPECT_GT(total, x.size() * (D == 2 ? 8 : 20));
 
   // The refresh of the kept pairs at the same positions is the fill again.
-  DeviceVector<Cpu, Vec<D, Real>> zero(size_t(n), Vec<D, Real>::zero());
+  DeviceVector<Cpu, Vec<D, Real>> zero(size_t(n), Vec<D, Real>::zero()), x2(static_cast<size_t>(n));
+  DeviceVector<Cpu, Real> volume(static_cast<size_t>(n));
+  parallel_for<Cpu>(n, ulsph::PositionVolumeFunctor<D, Real>{set.get<Vec<D, Real>>(field::current_position), raw(zero),
+                                                             set.get<Real>(field::mass), set.get<Real>(field::density),
+                                                             raw(x2), raw(volume)});
   for (const auto& b : bodies)
-    parallel_for<Cpu>(
-        b.range.begin, b.range.end,
-        ulsph::PairRefreshFunctor<D, Real>{set.get<Vec<D, Real>>(field::current_position), raw(zero), kernel,
-                                           set.get<Real>(field::mass), set.get<Real>(field::density), raw(offsets),
-                                           raw(neighbor), raw(grad2), raw(stretch2), raw(sum2)});
+    parallel_for<Cpu>(b.range.begin, b.range.end,
+                      ulsph::PairRefreshFunctor<D, Real>{raw(x2), raw(volume), kernel, raw(offsets), raw(neighbor),
+                                                         raw(grad2), raw(stretch2), raw(sum2)});
   const auto g2 = to_host<Cpu>(grad2);
   const auto st2 = to_host<Cpu>(stretch2);
   for (size_t p = 0; p < size_t(pairs); ++p) {

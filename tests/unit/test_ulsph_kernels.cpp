@@ -610,8 +610,8 @@ TEST(UlsphPressureForce, PairIsPushedApart) {
   const Vec<2, double> recede[2] = {Vec<2, double>{{1.0, 0.0}}, Vec<2, double>{{-1.0, 0.0}}};
   const double compressed[2] = {2.0, 2.0}, none[2] = {0.0, 0.0}, tension[2] = {-2.0, -2.0};
   Vec<2, double> a[2];
-  auto run = [&](const Vec<2, double>* v, const double* pr, double Z) {
-    for_each_particle(2, ulsph::PressureAccelerationFunctor<2, double>{p.view(), v, rho, pr, Z, a});
+  auto run = [&](const Vec<2, double>* v, const double* pr, double Z, double limiter = 0.0) {
+    for_each_particle(2, ulsph::PressureAccelerationFunctor<2, double>{p.view(), v, rho, pr, Z, limiter, a});
     EXPECT_NEAR(a[0].v[0], -a[1].v[0], 1e-15);  // m_i a_i = -m_j a_j
     EXPECT_NEAR(a[0].v[1], 0.0, 1e-15);         // central
     EXPECT_NEAR(a[1].v[1], 0.0, 1e-15);
@@ -628,6 +628,16 @@ TEST(UlsphPressureForce, PairIsPushedApart) {
   // Size: Z |v_i - v_j| |dW| V / rho with dW = dW/dr(0.5).
   const double dW = WendlandC2<2, double>::make(1.0).dW(0.5);
   EXPECT_NEAR(approach_a, 10.0 * 2.0 * std::abs(dW), 1e-12);
+  // The low-dissipation limiter (seed 002 ref. [38]), limiter = eta / c0:
+  // Z u scaled by min(eta u / c0, 1) with the approach speed u = 2 here.
+  run(approach, none, 10.0, 0.25);
+  EXPECT_NEAR(a[0].v[0], 0.5 * approach_a, 1e-12);  // eta u / c0 = 0.5
+  run(approach, none, 10.0, 1.0);
+  EXPECT_NEAR(a[0].v[0], approach_a, 1e-12);  // capped at 1: the full dissipation
+  run(recede, none, 10.0, 1.0);
+  EXPECT_EQ(a[0].v[0], 0.0);  // receding pairs are not held back
+  run(approach, compressed, 10.0, 0.25);
+  EXPECT_NEAR(a[0].v[0], 0.5 * approach_a + 2.0 * 2.0 * std::abs(dW), 1e-12);  // the pressure is not limited
 }
 
 TEST(UlsphShearForce, UniformStressBalancesInsideAndPullsABarBack) {
@@ -687,7 +697,7 @@ void pair_forces_conserve_momentum() {
   std::vector<Vec<D, double>> a_p(N), a_s(N, Vec<D, double>::zero()), a_h(N, Vec<D, double>::zero()),
       a_amc(N, Vec<D, double>::zero());
   for_each_particle(
-      N, ulsph::PressureAccelerationFunctor<D, double>{p.view(), v.data(), rho.data(), pr.data(), Z, a_p.data()});
+      N, ulsph::PressureAccelerationFunctor<D, double>{p.view(), v.data(), rho.data(), pr.data(), Z, 0.0, a_p.data()});
   for_each_particle(N, ulsph::ShearAccelerationFunctor<D, double>{p.view(), rho.data(), tau.data(), a_s.data()});
   for_each_particle(N, ulsph::GnogPenaltyFunctor<D, double>{p.view(), v.data(), L.data(), rho.data(), kappa.data(), 0.2,
                                                             G, dt, a_h.data(), nullptr});

@@ -71,7 +71,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     from_host<B>(density, particles_.template buffer<Real>(field::density));
     particles_.template add<Real>(field::mass);
     from_host<B>(mass, particles_.template buffer<Real>(field::mass));
-    if (scene_.solver.ulsph.refresh_pairs) particles_.template add<Real>(field::density_next);
+    if (scene_.solver.ulsph.refresh_pairs) particles_.template add<Real>(field::current_volume);
     particles_.template add<Real>(field::pair_density);
     particles_.template add<Vec<D, Real>>(field::acceleration);
     particles_.template add<Real>(field::pressure);
@@ -150,10 +150,14 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     // which the forces act and between the velocities of the two density
     // half steps: the lag of pair directions behind a spinning body then
     // cancels (docs/theory.md, "ULSPH").
-    run("half_step", [&] {
-      parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
-    });
     const bool refresh = !rebuild_due_ && scene_.solver.ulsph.refresh_pairs;
+    run("half_step", [&] {
+      if (refresh)  // with x and V of the step's start for the refresh below
+        parallel_for<B>(n, ulsph::DisplacementHalfStepPositionVolumeFunctor<D, Real>{
+                               velocity(), displacement(), half_dt, position_volume()});
+      else
+        parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
+    });
     if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
     const PairList<D, Real> pairs = pair_list();
     if (refresh)  // pair data, B and the density half step in one pass over the rows
@@ -361,14 +365,28 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
           long(thrust::count(BackendTraits<B>::policy(), fallback_.begin(), fallback_.end(), (unsigned char)1));
   }
 
+  // x = X + u into current_position and V = m / rho into current_volume.
+  ulsph::PositionVolumeFunctor<D, Real> position_volume() {
+    return {reference(), displacement(), real(field::mass), real(field::density),
+            particles_.template get<Vec<D, Real>>(field::current_position), real(field::current_volume)};
+  }
+
+  ulsph::PairRefreshFunctor<D, Real> pair_refresh(const BodySearch& s) {
+    return {particles_.template get<Vec<D, Real>>(field::current_position),
+            real(field::current_volume),
+            WendlandC2<D, Real>::make(Real(s.smoothing_length)),
+            raw(offsets_),
+            raw(neighbor_),
+            raw(grad_),
+            raw(stretch_),
+            raw(gradient_sum_)};
+  }
+
   // The pair data of the kept pairs at the current positions and B (restarts).
   void refresh_pair_data() {
-    for (const auto& s : search_)
-      parallel_for<B>(
-          s.range.begin, s.range.end,
-          ulsph::PairRefreshFunctor<D, Real>{
-              reference(), displacement(), WendlandC2<D, Real>::make(Real(s.smoothing_length)), real(field::mass),
-              real(field::density), raw(offsets_), raw(neighbor_), raw(grad_), raw(stretch_), raw(gradient_sum_)});
+    if (!particles_.has(field::current_volume)) particles_.template add<Real>(field::current_volume);
+    parallel_for<B>(particles_.size(), position_volume());
+    for (const auto& s : search_) parallel_for<B>(s.range.begin, s.range.end, pair_refresh(s));
     keep_pair_density();
     parallel_for<B>(particles_.size(), ulsph::CorrectionMatrixFunctor<D, Real>{
                                            pair_list(), mat(field::correction_matrix), raw(fallback_), Real(1e-3)});
@@ -377,20 +395,11 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   // The pair data of the kept pairs at the half-step positions, B and the
   // first density half step (ulsph::RefreshHalfStepFunctor).
   void refresh_half_step(Real half_dt) {
-    Real* next = real(field::density_next);
     for (const auto& s : search_)
-      parallel_for<B>(
-          s.range.begin, s.range.end,
-          ulsph::RefreshHalfStepFunctor<D, Real>{
-              {reference(), displacement(), WendlandC2<D, Real>::make(Real(s.smoothing_length)), real(field::mass),
-               real(field::density), raw(offsets_), raw(neighbor_), raw(grad_), raw(stretch_), raw(gradient_sum_)},
-              velocity(),
-              next,
-              real(field::pair_density),
-              mat(field::correction_matrix),
-              Real(1e-3),
-              half_dt});
-    thrust::copy(BackendTraits<B>::policy(), next, next + particles_.size(), real(field::density));
+      parallel_for<B>(s.range.begin, s.range.end,
+                      ulsph::RefreshHalfStepFunctor<D, Real>{pair_refresh(s), velocity(), real(field::density),
+                                                             real(field::pair_density), mat(field::correction_matrix),
+                                                             Real(1e-3), half_dt});
   }
 
   // The densities the pair data were formed with (V_i = m_i / rho_i in
@@ -466,6 +475,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
           acceleration(),
           numerical_work(dt),
           Real(m.density * props(b).c0),  // Z = rho0 c0 (formulations.md 3)
+          Real(scene_.solver.ulsph.riemann_limiter / props(b).c0),  // eta / c0 (seed 002 ref. [38]); 0: none
           Real(xi),
           Real(props(b).G),
           dt,
