@@ -20,6 +20,7 @@
 
 #include "kernels/core/mat.hpp"
 #include "kernels/tlsph/e_hat.hpp"
+#include "kernels/tlsph/genog_active_pairs.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/hourglass.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
@@ -127,9 +128,12 @@ struct AccelerationFunctor {
     velocity[i] += a * dt;  // eq. 36
   }
 
-  // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair has phi_ij > 0.
+  // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair has
+  // phi_ij > 0; with a record (host), the pairs that pass a slightly looser
+  // test (GenogActivePairs).
   MFSD_HD bool genog_first_pass(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
-                                Real& s0_out, Real& s1_out, Real& s2_out) const {
+                                Real& s0_out, Real& s1_out, Real& s2_out,
+                                GenogActivePairs<Real>* record = nullptr) const {
     const Real* Q = &force_stress[0].m[0][0];
     const Real* Fv = &inverse_F[0].m[0][0];
     const Real* U = &displacement[0].v[0];
@@ -162,7 +166,9 @@ struct AccelerationFunctor {
       const Real h0 = Real(0.5) * ((f00 + Fv[j9]) * t0 + (f01 + Fv[j9 + 1]) * t1 + (f02 + Fv[j9 + 2]) * t2) - g0;
       const Real h1 = Real(0.5) * ((f10 + Fv[j9 + 3]) * t0 + (f11 + Fv[j9 + 4]) * t1 + (f12 + Fv[j9 + 5]) * t2) - g1;
       const Real h2 = Real(0.5) * ((f20 + Fv[j9 + 6]) * t0 + (f21 + Fv[j9 + 7]) * t1 + (f22 + Fv[j9 + 8]) * t2) - g2;
-      active |= h0 * h0 + h1 * h1 + h2 * h2 > thr2 * (g0 * g0 + g1 * g1 + g2 * g2);
+      const Real hh = h0 * h0 + h1 * h1 + h2 * h2, gg = g0 * g0 + g1 * g1 + g2 * g2;
+      active |= hh > thr2 * gg;
+      if (record) record->add(p - begin, hh, gg);
     }
     s0_out = s0;
     s1_out = s1;
@@ -175,7 +181,7 @@ struct AccelerationFunctor {
   // compiler maps them to SSE/AVX registers), reading the packed neighbour
   // record: Q_j g and (F_i^{-1} + F_j^{-1}) t are three vector FMAs each.
   bool genog_first_pass_packed(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
-                               Real& s0_out, Real& s1_out, Real& s2_out) const {
+                               Real& s0_out, Real& s1_out, Real& s2_out, GenogActivePairs<Real>& record) const {
     typedef Real V4 __attribute__((vector_size(4 * sizeof(Real))));
     auto load = [](const Real* p) {
       V4 v;
@@ -207,6 +213,8 @@ struct AccelerationFunctor {
       const V4 h = s * Real(0.5) - g;  // eq. 31 times V0_j dW
       const V4 d = h * h - g * g * thr2;
       active |= d[0] + d[1] + d[2] > Real(0);
+      const V4 hh = h * h, gg = g * g;
+      record.add(p - begin, hh[0] + hh[1] + hh[2], gg[0] + gg[1] + gg[2]);
     }
     s0_out = acc[0];
     s1_out = acc[1];
@@ -215,42 +223,58 @@ struct AccelerationFunctor {
   }
 #endif
 
+  // phi_ij (S_i + S_j) h_ij of pair p when it is active (eq. 32, the phi e_hat part).
+  MFSD_HD void genog_correction(PairIndex p, const Mat<D, Real>& Fi, const Vec<D, Real>& ui, const Mat<D, Real>& Si,
+                                Vec<D, Real>& sum) const {
+    const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
+    const Index j = pairs.neighbor[p];
+    const Vec<D, Real> g = pairs.grad[p];
+    const Mat<D, Real> Fj = neighbor_record ? neighbor_record[j].F_inv() : inverse_F[j];
+    const Vec<D, Real> h = scaled_e_hat(Fi, Fj, ui, displacement[j], g, pairs.stretch[p]);
+    const Real h2 = squared_norm(h), g2 = squared_norm(g);
+    if (h2 > thr2 * g2) {
+      const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
+      sum += (Si + shear_stress[j]) * genog_weight.correction(g, h, phi, g2);  // eq. 32, phi e_hat part
+    }
+  }
+
   // genog in 3-D: the same sums in two passes over the pairs. The first pass
   // sums Q_j g_ij and tests phi_ij > 0 on squares, written on scalars with
   // (F_i^{-1} + F_j^{-1}) t as 9 adds and 9 multiplies (1.4x faster than the
   // same arithmetic on Vec/Mat temporaries; docs/performance.md). Only a
-  // particle with an active pair (rare in an orderly distribution) takes the
-  // second pass, which adds phi_ij (S_i + S_j) h_ij.
+  // particle with an active pair takes the second pass, which adds
+  // phi_ij (S_i + S_j) h_ij: on CPU threads over the pairs the first pass
+  // recorded (GenogActivePairs), all of them when more than its capacity
+  // passed; on the GPU over all pairs. The record holds every pair the
+  // second pass's own test can accept, so the sums are those of the full
+  // second pass, bit for bit.
   MFSD_HD void genog_particle_3d(Index i) const {
     const Mat<D, Real> Fi = neighbor_record ? neighbor_record[i].F_inv() : inverse_F[i];
     const Vec<D, Real> ui = displacement[i];
-    const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
     const PairIndex begin = pairs.offsets[i], end = pairs.offsets[i + 1];
     Real s0, s1, s2;
     bool active;
 #if !defined(__CUDACC__)
+    GenogActivePairs<Real> record;
     if (neighbor_record)
-      active = genog_first_pass_packed(Fi, ui, begin, end, s0, s1, s2);
+      active = genog_first_pass_packed(Fi, ui, begin, end, s0, s1, s2, record);
     else
+      active = genog_first_pass(Fi, ui, begin, end, s0, s1, s2, &record);
+#else
+    active = genog_first_pass(Fi, ui, begin, end, s0, s1, s2);
 #endif
-      active = genog_first_pass(Fi, ui, begin, end, s0, s1, s2);
     Vec<D, Real> sum;
     sum.v[0] = s0;
     sum.v[1] = s1;
     sum.v[2] = s2;
     if (active) {
       const Mat<D, Real> Si = shear_stress[i];
-      for (PairIndex p = begin; p < end; ++p) {
-        const Index j = pairs.neighbor[p];
-        const Vec<D, Real> g = pairs.grad[p];
-        const Mat<D, Real> Fj = neighbor_record ? neighbor_record[j].F_inv() : inverse_F[j];
-        const Vec<D, Real> h = scaled_e_hat(Fi, Fj, ui, displacement[j], g, pairs.stretch[p]);
-        const Real h2 = squared_norm(h), g2 = squared_norm(g);
-        if (h2 > thr2 * g2) {
-          const Real phi = genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
-          sum += (Si + shear_stress[j]) * genog_weight.correction(g, h, phi, g2);  // eq. 32, phi e_hat part
-        }
-      }
+#if !defined(__CUDACC__)
+      if (!record.overflowed())
+        for (int r = 0; r < record.count; ++r) genog_correction(begin + record.offset[r], Fi, ui, Si, sum);
+      else
+#endif
+        for (PairIndex p = begin; p < end; ++p) genog_correction(p, Fi, ui, Si, sum);
     }
     finish(i, neighbor_record ? neighbor_record[i].Q() : force_stress[i], sum);
   }
