@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The genog force stage in the twisted column against the undeformed one
 # (issue 24, item 2: the twisted state may cost no more than 1.15x).
-#   bench/twisted_genog.sh [BINARY] [H_over_dp] [twist_time] [steps]
+#   bench/twisted_genog.sh [BINARY] [H_over_dp] [twist_time] [steps] [--set k=v ...]
 # Runs configs/twisting_column_3d.json (genog, double, 2 threads) to
 # twist_time with a checkpoint at the end, then times `steps` steps twice:
 # from t = 0 and continued from the checkpoint (--restart). Prints the force
@@ -14,17 +14,20 @@ bin=${1:-$root/build/mfsd}
 res=${2:-12}
 twist=${3:-0.1}
 steps=${4:-200}
+shift $(($# < 4 ? $# : 4))
 threads=${THREADS:-2}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 scene="$root/configs/twisting_column_3d.json"
 common=(--set "constants.H_over_dp=$res" --set output.vtu=false --set output.interval=1e9
-        --set output.probe_interval=1e9 --threads "$threads" -q)
+        --set output.probe_interval=1e9 --threads "$threads" -q "$@")
 "$bin" run "$scene" "${common[@]}" --set "solver.end_time=$twist" \
   --set "output.checkpoint_interval=$twist" -o "$out/twisted"
 "$bin" run "$scene" "${common[@]}" --max-steps $((steps + 5)) --warmup-steps 5 -o "$out/straight"
+# --max-steps counts from the run's start: the checkpoint's steps plus these.
+done_steps=$(python3 -c "import json; print(json.load(open('$out/twisted/timing.json'))['steps'])")
 "$bin" run "$scene" "${common[@]}" --set "solver.end_time=$(python3 -c "print($twist * 2)")" \
-  --max-steps $((steps + 5)) --warmup-steps 5 --restart "$out/twisted" > /dev/null
+  --max-steps $((done_steps + steps + 5)) --warmup-steps 5 --restart "$out/twisted" > /dev/null
 python3 - "$out" "$bin" "$res" "$twist" <<'EOF'
 import json, sys
 out, binary, res, twist = sys.argv[1:]

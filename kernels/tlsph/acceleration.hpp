@@ -128,9 +128,9 @@ struct AccelerationFunctor {
     velocity[i] += a * dt;  // eq. 36
   }
 
-  // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair has
-  // phi_ij > 0; with a record (host), the pairs that pass a slightly looser
-  // test (GenogActivePairs).
+  // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair may
+  // have phi_ij > 0 (the test of GenogActivePairs, a little looser than the
+  // second pass's); with a record (host), which pairs.
   MFSD_HD bool genog_first_pass(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
                                 Real& s0_out, Real& s1_out, Real& s2_out,
                                 GenogActivePairs<Real>* record = nullptr) const {
@@ -144,7 +144,7 @@ struct AccelerationFunctor {
     const Real f10 = Fi.m[1][0], f11 = Fi.m[1][1], f12 = Fi.m[1][2];
     const Real f20 = Fi.m[2][0], f21 = Fi.m[2][1], f22 = Fi.m[2][2];
     const Real u0 = ui.v[0], u1 = ui.v[1], u2 = ui.v[2];
-    const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
+    const Real thr2 = GenogActivePairs<Real>::loose_threshold2;  // the second pass tests 0.05^2
     Real s0 = Real(0), s1 = Real(0), s2 = Real(0);
     bool active = false;
     for (PairIndex p = begin; p < end; ++p) {
@@ -166,9 +166,9 @@ struct AccelerationFunctor {
       const Real h0 = Real(0.5) * ((f00 + Fv[j9]) * t0 + (f01 + Fv[j9 + 1]) * t1 + (f02 + Fv[j9 + 2]) * t2) - g0;
       const Real h1 = Real(0.5) * ((f10 + Fv[j9 + 3]) * t0 + (f11 + Fv[j9 + 4]) * t1 + (f12 + Fv[j9 + 5]) * t2) - g1;
       const Real h2 = Real(0.5) * ((f20 + Fv[j9 + 6]) * t0 + (f21 + Fv[j9 + 7]) * t1 + (f22 + Fv[j9 + 8]) * t2) - g2;
-      const Real hh = h0 * h0 + h1 * h1 + h2 * h2, gg = g0 * g0 + g1 * g1 + g2 * g2;
-      active |= hh > thr2 * gg;
-      if (record) record->add(p - begin, hh, gg);
+      const Real excess = h0 * h0 + h1 * h1 + h2 * h2 - thr2 * (g0 * g0 + g1 * g1 + g2 * g2);
+      active |= excess > Real(0);
+      if (record) record->put(p - begin, excess);
     }
     s0_out = s0;
     s1_out = s1;
@@ -192,7 +192,7 @@ struct AccelerationFunctor {
     const V4 fi1 = {Fi.m[0][1], Fi.m[1][1], Fi.m[2][1], Real(0)};
     const V4 fi2 = {Fi.m[0][2], Fi.m[1][2], Fi.m[2][2], Real(0)};
     const V4 u_i = {ui.v[0], ui.v[1], ui.v[2], Real(0)};
-    const Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
+    const Real thr2 = GenogActivePairs<Real>::loose_threshold2;  // the second pass tests 0.05^2
     const Real* G = &pairs.grad[0].v[0];
     const Real* K = pairs.stretch;
     const Index* J = pairs.neighbor;
@@ -212,9 +212,9 @@ struct AccelerationFunctor {
       const V4 s = (fi0 + load(r.f[0])) * t[0] + (fi1 + load(r.f[1])) * t[1] + (fi2 + load(r.f[2])) * t[2];
       const V4 h = s * Real(0.5) - g;  // eq. 31 times V0_j dW
       const V4 d = h * h - g * g * thr2;
-      active |= d[0] + d[1] + d[2] > Real(0);
-      const V4 hh = h * h, gg = g * g;
-      record.add(p - begin, hh[0] + hh[1] + hh[2], gg[0] + gg[1] + gg[2]);
+      const Real excess = d[0] + d[1] + d[2];
+      active |= excess > Real(0);
+      record.put(p - begin, excess);
     }
     s0_out = acc[0];
     s1_out = acc[1];
@@ -244,10 +244,13 @@ struct AccelerationFunctor {
   // same arithmetic on Vec/Mat temporaries; docs/performance.md). Only a
   // particle with an active pair takes the second pass, which adds
   // phi_ij (S_i + S_j) h_ij: on CPU threads over the pairs the first pass
-  // recorded (GenogActivePairs), all of them when more than its capacity
-  // passed; on the GPU over all pairs. The record holds every pair the
-  // second pass's own test can accept, so the sums are those of the full
-  // second pass, bit for bit.
+  // recorded (GenogActivePairs; all of them in a row longer than its
+  // capacity), on the GPU over all pairs. The record holds every pair the
+  // second pass's own test can accept, so the sums are those of a full second
+  // pass, to round-off: a particle whose pairs only pass the looser test takes
+  // the second pass and adds nothing, and a pair at the threshold, where
+  // phi_ij = 0, may fall either way where the compiler contracts the first
+  // pass's arithmetic differently.
   MFSD_HD void genog_particle_3d(Index i) const {
     const Mat<D, Real> Fi = neighbor_record ? neighbor_record[i].F_inv() : inverse_F[i];
     const Vec<D, Real> ui = displacement[i];
@@ -270,8 +273,8 @@ struct AccelerationFunctor {
     if (active) {
       const Mat<D, Real> Si = shear_stress[i];
 #if !defined(__CUDACC__)
-      if (!record.overflowed())
-        for (int r = 0; r < record.count; ++r) genog_correction(begin + record.offset[r], Fi, ui, Si, sum);
+      if (!record.overflowed(end - begin))
+        record.for_each(end - begin, [&](PairIndex k) { genog_correction(begin + k, Fi, ui, Si, sum); });
       else
 #endif
         for (PairIndex p = begin; p < end; ++p) genog_correction(p, Fi, ui, Si, sum);

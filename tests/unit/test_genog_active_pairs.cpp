@@ -2,8 +2,10 @@
 // recorded (kernels/tlsph/genog_active_pairs.hpp, issue 24 item 2). Checked:
 // the record's own rules (the looser threshold, ascending order, overflow),
 // and the force of a strongly disordered state, where particles have from
-// none to more than `capacity` active pairs, against a direct sum over every
-// pair (the oracle), on both CPU paths (packed record and scalar).
+// none to many active pairs, against a direct sum over every
+// pair (the oracle), on both CPU paths (packed record and scalar): particles
+// without an active pair, with their active pairs recorded, and with rows too
+// long for the record.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,27 +19,34 @@
 using namespace mfsd;
 
 TEST(GenogActivePairs, RecordsWhatTheSecondPassCanAcceptInOrder) {
-  GenogActivePairs<double> r;
+  using Record = GenogActivePairs<double>;
   const double t2 = 0.05 * 0.05;
-  r.add(0, 0.5 * t2, 1.0);                  // clearly inactive
-  r.add(1, t2 * (1 + 1e-9), 1.0);           // active
-  r.add(2, t2 * (1 - 1e-6), 1.0);           // just below the threshold: recorded (the margin)
-  r.add(3, t2 * (1 - 1e-2), 1.0);           // below the margin: not recorded
-  r.add(4, 4.0, 1.0);                       // far above
-  ASSERT_EQ(r.count, 3);
-  EXPECT_EQ(r.offset[0], 1);
-  EXPECT_EQ(r.offset[1], 2);
-  EXPECT_EQ(r.offset[2], 4);
-  EXPECT_FALSE(r.overflowed());
-  // Filled to capacity: no entry is lost to the stores of inactive pairs after it.
-  GenogActivePairs<float> f;
-  for (int k = 0; k < GenogActivePairs<float>::capacity; ++k) f.add(2 * k, 1.0f, 1.0f);
-  f.add(1000, 0.0f, 1.0f);
-  ASSERT_EQ(f.count, GenogActivePairs<float>::capacity);
-  EXPECT_FALSE(f.overflowed());
-  for (int k = 0; k < f.capacity; ++k) EXPECT_EQ(f.offset[k], 2 * k);
-  f.add(1001, 1.0f, 1.0f);
-  EXPECT_TRUE(f.overflowed());
+  // A row as the first pass records it: (|h|^2, |g|^2) of each pair.
+  auto visited = [](const std::vector<std::pair<double, double>>& row) {
+    Record r;
+    for (size_t k = 0; k < row.size(); ++k)
+      r.put(PairIndex(k), row[k].first - Record::loose_threshold2 * row[k].second);
+    std::vector<PairIndex> k;
+    r.for_each(PairIndex(row.size()), [&](PairIndex p) { k.push_back(p); });
+    return k;
+  };
+  EXPECT_EQ(visited({{0.5 * t2, 1.0},           // clearly inactive
+                     {t2 * (1 + 1e-9), 1.0},    // active
+                     {t2 * (1 - 1e-6), 1.0},    // just below the threshold: visited (the margin)
+                     {t2 * (1 - 1e-2), 1.0},    // below the margin: not visited
+                     {4.0, 1.0}}),              // far above
+            (std::vector<PairIndex>{1, 2, 4}));
+  // A full row: every third pair active.
+  const int cap = Record::capacity;
+  std::vector<std::pair<double, double>> row;
+  std::vector<PairIndex> every_third;
+  for (int k = 0; k < cap; ++k) {
+    row.push_back({k % 3 == 0 ? 1.0 : 0.0, 1.0});
+    if (k % 3 == 0) every_third.push_back(k);
+  }
+  EXPECT_EQ(visited(row), every_third);
+  EXPECT_FALSE(Record::overflowed(cap));
+  EXPECT_TRUE(Record::overflowed(cap + 1));
 }
 
 namespace {
@@ -53,8 +62,10 @@ Mat<3, double> random_matrix(std::mt19937& rng, double scale) {
 }  // namespace
 
 TEST(GenogActivePairs, SecondPassOverTheRecordEqualsTheDirectSum) {
-  const int n[3] = {7, 7, 7};
-  const double dp = 0.1, h = 1.3 * dp;
+  // h = 2.4 dp: interior rows are longer than the record's capacity (the
+  // full second pass), rows at the corners shorter (the recorded one).
+  const int n[3] = {9, 9, 9};
+  const double dp = 0.1, h = 2.4 * dp;
   const auto x = test::lattice<3>(n, dp, 0.1, 3);
   for (const GenogLimiter limiter : {GenogLimiter::capped, GenogLimiter::paper}) {
     test::Fixture<3, double> fx(x, dp, h, false, {}, limiter == GenogLimiter::paper);
@@ -78,7 +89,7 @@ TEST(GenogActivePairs, SecondPassOverTheRecordEqualsTheDirectSum) {
     GenogWeight<double> weight{limiter, 8.0 * 3, GenogForm::vector};
     const double inv_rho0 = 1.0 / 1100;
     // The oracle: every pair, in order, with the test of the second pass.
-    int none = 0, few = 0, many = 0;
+    int none = 0, recorded = 0, overflowed = 0;
     std::vector<Vec<3, double>> expected(N);
     for (Index i = 0; i < N; ++i) {
       Vec<3, double> sum = Vec<3, double>::zero(), corrections = Vec<3, double>::zero();
@@ -95,12 +106,13 @@ TEST(GenogActivePairs, SecondPassOverTheRecordEqualsTheDirectSum) {
           corrections += (S[i] + S[j]) * weight.correction(g, hv, phi, g2);
         }
       }
-      (active == 0 ? none : active <= GenogActivePairs<double>::capacity ? few : many)++;
+      const PairIndex row = pairs.offsets[i + 1] - pairs.offsets[i];
+      (active == 0 ? none : row <= GenogActivePairs<double>::capacity ? recorded : overflowed)++;
       expected[i] = (Q[i] * pairs.gradient_sum[i] + sum + corrections) * inv_rho0;
     }
     EXPECT_GT(none, 0);
-    EXPECT_GT(few, 0);
-    EXPECT_GT(many, 0);
+    EXPECT_GT(recorded, 0);
+    EXPECT_GT(overflowed, 0);
     for (const bool packed : {true, false}) {
       SCOPED_TRACE(packed ? "packed record" : "scalar");
       AccelerationFunctor<3, double, HourglassGenog> f{pairs,
