@@ -3,7 +3,11 @@
 two mfsd binaries on short versions of the plate, bending-column and
 twisting-column scenes (one thread each, double) and prints the largest
 relative difference of every probe column and of the final total energy.
-Usage: bench/compare_runs.py OLD_MFSD NEW_MFSD"""
+Usage: bench/compare_runs.py OLD_MFSD NEW_MFSD [--threads N] [--old-args "ARGS"] [--new-args "ARGS"]
+(the same binary twice with different arguments compares run options,
+e.g. --new-args "--pair-loop half")"""
+import argparse
+import shlex
 import csv
 import os
 import subprocess
@@ -34,14 +38,20 @@ def rows(path):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
+    ap = argparse.ArgumentParser(usage=__doc__)
+    ap.add_argument("old")
+    ap.add_argument("new")
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--old-args", default="")
+    ap.add_argument("--new-args", default="")
+    args = ap.parse_args()
     worst_all = 0.0
     for name, scene, sets, extra in CASES:
         outs = []
-        for tag, binary in (("old", sys.argv[1]), ("new", sys.argv[2])):
+        for tag, binary, more in (("old", args.old, args.old_args), ("new", args.new, args.new_args)):
             out = os.path.join(ROOT, "out", "compare", f"{name}_{tag}")
-            cmd = [binary, "run", os.path.join(ROOT, scene), "-o", out, "-q", "--threads", "1"] + extra
+            cmd = [binary, "run", os.path.join(ROOT, scene), "-o", out, "-q", "--threads", str(args.threads)]
+            cmd += extra + shlex.split(more)
             for s in sets:
                 cmd += ["--set", s]
             subprocess.run(cmd, check=True)

@@ -15,10 +15,12 @@
 #include <thrust/system/omp/vector.h>
 #include <thrust/transform_reduce.h>
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
 #include "host/backend/backend.hpp"
+#include "kernels/neighbors/half_pair_sink.hpp"
 
 namespace mfsd {
 
@@ -59,6 +61,47 @@ inline void parallel_reduce(Cpu, Index begin, Index end, const F& f, T init, Op 
   T r = init;
   for (const T& p : partial) r = op(r, p);
   *out = r;
+}
+
+// The half-pair loop (Cabana's "half neighbour" tag; issue 24): every pair
+// once, from the row of its smaller index, its share given to both particles
+// through a HalfPairSink (kernels/neighbors/half_pair_sink.hpp). Each thread
+// takes a contiguous block [lo, hi) of [begin, end), zeroes acc over it and its
+// own buffer for the neighbours beyond it (j - hi < bandwidth, the largest
+// j - i of a pair), runs row(i, sink) over the block; after one barrier,
+// finish(i, total) over the block, total = acc[i] plus what the blocks before
+// it put in their buffers for i. No atomics; the sums' order depends on the
+// thread count only. workspace: the buffers, kept between calls.
+template <class T, class Row, class Finish>
+inline void half_pair_for(Cpu, Index begin, Index end, Index bandwidth, T zero, T* acc, std::vector<T>& workspace,
+                          const Row& row, const Finish& finish) {
+  if (end <= begin) return;
+  const int threads = omp_get_max_threads();
+  const size_t width = size_t(bandwidth > 0 ? bandwidth : 0);
+  if (workspace.size() < size_t(threads) * width) workspace.resize(size_t(threads) * width);
+  T* buffers = workspace.data();
+  const std::int64_t n = std::int64_t(end) - begin;
+#pragma omp parallel
+  {
+    const int count = omp_get_num_threads(), t = omp_get_thread_num();
+    auto block_end = [&](int k) { return Index(begin + n * (k + 1) / count); };
+    const Index lo = Index(begin + n * t / count), hi = block_end(t);
+    T* remote = buffers + size_t(t) * width;
+    const size_t used = std::min(width, size_t(end - hi));
+    for (Index i = lo; i < hi; ++i) acc[i] = zero;
+    for (size_t k = 0; k < used; ++k) remote[k] = zero;
+    const HalfPairSink<T> sink{acc, remote, hi};
+    for (Index i = lo; i < hi; ++i) row(i, sink);
+#pragma omp barrier
+    for (Index i = lo; i < hi; ++i) {
+      T total = acc[i];
+      for (int s = 0; s < t; ++s) {
+        const std::int64_t k = std::int64_t(i) - block_end(s);
+        if (k >= 0 && k < std::int64_t(width)) total += buffers[size_t(s) * width + size_t(k)];
+      }
+      finish(i, total);
+    }
+  }
 }
 
 // Host-to-backend copies that do not make the host wait (per-step data such

@@ -49,6 +49,8 @@ const char* kUsage =
     "  --warmup-steps N        leave the first N steps out of timing.json (benchmarks)\n"
     "  --genog-record packed|scalar  3-D genog on cpu: packed neighbour record (default) or the\n"
     "                          scalar path the GPU takes\n"
+    "  --pair-loop full|half   cpu: each pair from both its rows (full gather, as on the GPU) or once\n"
+    "                          from the row of its smaller index (half, the default on cpu)\n"
     "  --checkpoint-every MIN  write a checkpoint every MIN minutes of wall time (also: output.checkpoint_interval)\n"
     "  --restart DIR           continue the run whose output (or checkpoint) folder is DIR, in that folder\n"
     "  -q, --quiet             no progress line and no summary\n"
@@ -99,7 +101,7 @@ int command_run(int argc, char** argv, const std::string& command_line) {
       "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
       "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>())(
       "restart", "", cxxopts::value<std::string>())("checkpoint-every", "", cxxopts::value<double>())(
-      "genog-record", "", cxxopts::value<std::string>());
+      "genog-record", "", cxxopts::value<std::string>())("pair-loop", "", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");
@@ -138,6 +140,11 @@ int command_run(int argc, char** argv, const std::string& command_line) {
     const std::string g = r["genog-record"].as<std::string>();
     if (g != "packed" && g != "scalar") throw UsageError("--genog-record " + g + ": expected packed or scalar");
     o.solver.packed_genog_record = g == "packed";
+  }
+  if (r.count("pair-loop")) {
+    const std::string l = r["pair-loop"].as<std::string>();
+    if (l != "full" && l != "half") throw UsageError("--pair-loop " + l + ": expected full or half");
+    o.solver.pair_loop = l == "half" ? SolverOptions::PairLoop::half : SolverOptions::PairLoop::full;
   }
   if (r.count("checkpoint-every")) {
     o.checkpoint_every_minutes = r["checkpoint-every"].as<double>();

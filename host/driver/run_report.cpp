@@ -97,6 +97,7 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
                     {"min", setup.min_neighbors},
                     {"max", setup.max_neighbors}};
   j["regularized_correction_matrices"] = setup.regularized_corrections;
+  j["pair_loop"] = setup.pair_loop;
   j["bytes_per_particle"] = setup.bytes_per_particle;
   j["machine"] = machine_description();
   j["status"] = status.state;

@@ -79,6 +79,7 @@ struct SetupReport {
   long min_neighbors = 0, max_neighbors = 0;
   long regularized_corrections = 0;  // B0 that needed the eigenvalue floor
   double bytes_per_particle = 0;
+  std::string pair_loop = "full";  // the strategy the pair stages ran (SolverOptions::pair_loop)
 };
 
 // A measure plane's particles: mean displacement [m] and total force
@@ -128,6 +129,12 @@ struct SolverOptions {
   // loop (kernels/tlsph/genog_neighbor_record.hpp); false takes the scalar
   // path the GPU always takes (tests compare the two).
   bool packed_genog_record = true;
+  // The pair loops' strategy on the CPU (issue 24): each pair from both rows
+  // (full gather, the GPU's) or once, from the row of its smaller index
+  // (half; kernels/neighbors/half_pair_sink.hpp). automatic: half on CPU
+  // threads, where it is faster (docs/performance.md), full on the GPU.
+  enum class PairLoop { automatic, full, half };
+  PairLoop pair_loop = PairLoop::automatic;
 };
 
 // Factory: picks the instantiation for backend x precision x dimension.

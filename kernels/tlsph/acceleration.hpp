@@ -122,11 +122,15 @@ struct AccelerationFunctor {
 
   MFSD_HD void finish(Index i, const Vec<D, Real>& sum) const { finish(i, force_stress[i], sum); }
 
+ public:
+  // a_i from sum = sum_j (Q_j g_ij + shear terms), and v += dt a.
   MFSD_HD void finish(Index i, const Mat<D, Real>& Qi, const Vec<D, Real>& sum) const {
     const Vec<D, Real> a = (Qi * pairs.gradient_sum[i] + sum) * inv_rho0 + body_acceleration;
     acceleration[i] = a;
     velocity[i] += a * dt;  // eq. 36
   }
+
+ private:
 
   // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair may
   // have phi_ij > 0 (the test of GenogActivePairs, a little looser than the

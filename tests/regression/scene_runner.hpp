@@ -30,12 +30,13 @@ inline SceneDocument load_config(const std::string& name, const std::vector<std:
 // Runs to the scene's end time (or max_steps); samples probes every step.
 inline Trace run_config(const std::string& name, const std::vector<std::string>& overrides,
                         Precision precision = Precision::double_precision, long max_steps = 0, long energy_every = 0,
-                        int threads = 0) {
+                        int threads = 0, SolverOptions::PairLoop pair_loop = SolverOptions::PairLoop::automatic) {
   const SceneDocument doc = load_config(name, overrides);
   const InitialParticles particles = generate_particles(doc.scene);
   SolverOptions o;
   o.precision = precision;
   o.threads = threads;
+  o.pair_loop = pair_loop;
   Trace t;
   t.solver = make_solver(doc.scene, particles, o);
   t.solver->initialize();

@@ -38,6 +38,7 @@ Snapshot run(const std::string& config, const std::vector<std::string>& sets, bo
   const InitialParticles particles = generate_particles(doc.scene);
   SolverOptions o;
   o.packed_genog_record = packed;
+  o.pair_loop = SolverOptions::PairLoop::full;  // the GPU's loop (test_pair_loops.cpp compares the half loop)
   o.threads = 1;
   auto solver = make_solver(doc.scene, particles, o);
   solver->initialize();

@@ -88,6 +88,52 @@ TEST_P(CpuBackend, SortGatherAndScan) {
   EXPECT_EQ(total, run);
 }
 
+// The half-pair loop against the full gather on a 1-D chain of n points,
+// pairs |i - j| <= w, pair value (j - i) * (i + j + 1), antisymmetric in a
+// shared factor: a_i = sum_j s_ij c_ij with c_ij = (i + j + 1), s_ij = j - i.
+// w from 1 (neighbours in the same block) to n (every block's buffer reaches
+// every later block); every element gets exactly its own sum.
+struct ChainRow {
+  Index n, w;
+  void operator()(Index i, const HalfPairSink<double>& sink) const {
+    double own = 0;
+    for (Index j = i + 1; j <= std::min(n - 1, i + w); ++j) {
+      const double c = double(i + j + 1), s = double(j - i);
+      own += s * c;         // to i
+      sink.add(j, -s * c);  // to j: s_ji = -s_ij
+    }
+    sink.add(i, own);
+  }
+};
+
+TEST_P(CpuBackend, HalfPairLoopMatchesTheFullGather) {
+  const Index n = 101;
+  for (int threads : {GetParam(), 5})
+    for (Index w : {1, 3, 20, 60, 100}) {
+      omp_set_num_threads(threads);
+      DeviceVector<Cpu, double> acc(size_t(n), -99.0), out(size_t(n), -99.0);
+      std::vector<double> workspace;
+      double* o = raw(out);
+      half_pair_for(Cpu{}, Index(0), n, w, 0.0, raw(acc), workspace, ChainRow{n, w},
+                    [o](Index i, double total) { o[i] = total; });
+      const auto h = to_host<Cpu>(out);
+      for (Index i = 0; i < n; ++i) {
+        double expected = 0;
+        for (Index j = std::max(Index(0), i - w); j <= std::min(n - 1, i + w); ++j)
+          if (j != i) expected += double(j - i) * double(i + j + 1);
+        EXPECT_EQ(h[size_t(i)], expected) << threads << " threads, w " << w << ", i " << i;  // integers: exact
+      }
+    }
+  // A sub-range leaves the rest alone.
+  DeviceVector<Cpu, double> acc(20, -1.0), out(20, -1.0);
+  std::vector<double> workspace;
+  double* o = raw(out);
+  half_pair_for(Cpu{}, Index(5), Index(15), Index(0), 0.0, raw(acc), workspace, ChainRow{0, 0},
+                [o](Index i, double total) { o[i] = total; });
+  const auto h = to_host<Cpu>(out);
+  for (Index i = 0; i < 20; ++i) EXPECT_EQ(h[size_t(i)], i >= 5 && i < 15 ? 0.0 : -1.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Threads, CpuBackend, ::testing::Values(1, 2));
 
 namespace {

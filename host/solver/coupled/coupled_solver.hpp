@@ -253,6 +253,7 @@ class CoupledSolver : public Solver {
       r.min_neighbors = std::min(r.min_neighbors, s.min_neighbors);
       r.max_neighbors = std::max(r.max_neighbors, s.max_neighbors);
       r.regularized_corrections += s.regularized_corrections;
+      if (s.pair_loop != "full") r.pair_loop = s.pair_loop;
       bytes += s.bytes_per_particle * double(s.particles);
     }
     r.mean_neighbors = r.particles ? double(r.pairs) / double(r.particles) : 0;

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
+#include <vector>
 
 #include "host/backend/algorithms.hpp"
 #include "host/particles/particle_set.hpp"
@@ -17,6 +19,7 @@
 #include "kernels/materials/neo_hookean.hpp"
 #include "kernels/materials/saint_venant_kirchhoff.hpp"
 #include "kernels/tlsph/acceleration.hpp"
+#include "kernels/tlsph/acceleration_half.hpp"
 #include "kernels/tlsph/observables.hpp"
 #include "kernels/tlsph/stress.hpp"
 
@@ -107,6 +110,14 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
         dt,
         v.acceleration,
         v.velocity};
+    if constexpr (std::is_same<B, Cpu>::value) {
+      if (v.half_bandwidth >= 0) {
+        const AccelerationHalfFunctor<D, Real, Hourglass> half{f, v.half_pairs, v.volume};
+        half_pair_for(Cpu{}, s_.range.begin, s_.range.end, v.half_bandwidth, Vec<D, Real>::zero(), v.acceleration,
+                      half_workspace_, half, [&](Index i, const Vec<D, Real>& total) { half.finish(i, total); });
+        return;
+      }
+    }
     parallel_for<B>(s_.range.begin, s_.range.end, f);
   }
 
@@ -132,6 +143,7 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
 
   Material material_;
   BodyKernelSettings s_;
+  mutable std::vector<Vec<D, Real>> half_workspace_;  // the half-pair loop's buffers (CPU)
 };
 
 }  // namespace mfsd

@@ -133,6 +133,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     pairs_ =
         build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter, notches);
     particles_.remove(field::reference_position_double);
+    if constexpr (std::is_same<B, Cpu>::value)  // the half-pair loop's list (issue 24)
+      if (options_.pair_loop != SolverOptions::PairLoop::full) build_half_pair_list(pairs_, n);
 
     auto* B0 = particles_.template add<Mat<D, Real>>(field::correction_matrix);
     DeviceVector<B, unsigned char> regularized(size_t(n), 0);
@@ -245,7 +247,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     // Set-up report.
     const double pair_bytes = double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
                                                         (paper_limiter ? sizeof(Real) : 0)) +
-                              double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>));  // offsets, gradient sum
+                              double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)) +  // offsets, gradient sum
+                              pairs_.half_bytes();
     this->report_particles_and_pairs(to_host<B>(pairs_.offsets), pair_bytes);
   }
 
@@ -414,6 +417,10 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       return particles_.has(name) ? particles_.template get<Mat<D, Real>>(name) : nullptr;
     };
     v_.pairs = pairs_.view();
+    const bool half = pairs_.bandwidth >= 0;
+    v_.half_pairs = half ? pairs_.half_view() : ReferencePairs<D, Real>{};
+    v_.half_bandwidth = pairs_.bandwidth;
+    report_.pair_loop = half ? "half" : "full";
     v_.reference_position = particles_.template get<Vec<D, Real>>(field::reference_position);
     v_.displacement = particles_.template get<Vec<D, Real>>(field::displacement);
     v_.velocity = particles_.template get<Vec<D, Real>>(field::velocity);

@@ -13,6 +13,10 @@ namespace mfsd {
 template <int D, class Real>
 struct TlsphViews : Kinematics<D, Real> {
   ReferencePairs<D, Real> pairs;
+  // The half-pair loop (CPU; --pair-loop): each row's pairs with j > i and
+  // the largest j - i; half_bandwidth -1 where the full gather runs.
+  ReferencePairs<D, Real> half_pairs{};
+  Index half_bandwidth = -1;
   Mat<D, Real>* deformation_gradient;
   Mat<D, Real>* deformation_rate;
   const Mat<D, Real>* correction;
