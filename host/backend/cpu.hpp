@@ -71,14 +71,20 @@ inline void parallel_reduce(Cpu, Index begin, Index end, const F& f, T init, Op 
 // j - i of a pair), runs row(i, sink) over the block; after one barrier,
 // finish(i, total) over the block, total = acc[i] plus what the blocks before
 // it put in their buffers for i. No atomics; the sums' order depends on the
-// thread count only. workspace: the buffers, kept between calls.
-template <class T, class Row, class Finish>
-inline void half_pair_for(Cpu, Index begin, Index end, Index bandwidth, T zero, T* acc, std::vector<T>& workspace,
-                          const Row& row, const Finish& finish) {
-  if (end <= begin) return;
+// thread count only. workspace: the buffers, kept between calls. What finish
+// returns is combined with op, each thread's block in order and then the
+// blocks in thread order (as parallel_reduce), into *out.
+template <class T, class Row, class Finish, class R, class Op>
+inline void half_pair_reduce(Cpu, Index begin, Index end, Index bandwidth, T zero, T* acc, std::vector<T>& workspace,
+                             const Row& row, const Finish& finish, R init, Op op, R* out) {
+  if (end <= begin) {
+    *out = init;
+    return;
+  }
   const int threads = omp_get_max_threads();
   const size_t width = size_t(bandwidth > 0 ? bandwidth : 0);
   if (workspace.size() < size_t(threads) * width) workspace.resize(size_t(threads) * width);
+  std::vector<R> partial(size_t(threads), init);
   T* buffers = workspace.data();
   const std::int64_t n = std::int64_t(end) - begin;
 #pragma omp parallel
@@ -93,15 +99,34 @@ inline void half_pair_for(Cpu, Index begin, Index end, Index bandwidth, T zero, 
     const HalfPairSink<T> sink{acc, remote, hi};
     for (Index i = lo; i < hi; ++i) row(i, sink);
 #pragma omp barrier
+    R r = init;
     for (Index i = lo; i < hi; ++i) {
       T total = acc[i];
       for (int s = 0; s < t; ++s) {
         const std::int64_t k = std::int64_t(i) - block_end(s);
         if (k >= 0 && k < std::int64_t(width)) total += buffers[size_t(s) * width + size_t(k)];
       }
-      finish(i, total);
+      r = op(r, finish(i, total));
     }
+    partial[size_t(t)] = r;
   }
+  R r = init;
+  for (const R& p : partial) r = op(r, p);
+  *out = r;
+}
+
+// The same without a result: finish(i, total) returns nothing.
+template <class T, class Row, class Finish>
+inline void half_pair_for(Cpu, Index begin, Index end, Index bandwidth, T zero, T* acc, std::vector<T>& workspace,
+                          const Row& row, const Finish& finish) {
+  char none = 0;
+  half_pair_reduce(
+      Cpu{}, begin, end, bandwidth, zero, acc, workspace, row,
+      [&](Index i, const T& total) {
+        finish(i, total);
+        return char(0);
+      },
+      char(0), [](char, char) { return char(0); }, &none);
 }
 
 // Host-to-backend copies that do not make the host wait (per-step data such

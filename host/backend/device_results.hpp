@@ -5,16 +5,15 @@
 // Each reduction gets a slot for its result in the order it runs; the
 // owners read their slots after fetch(). Include after the backend header.
 #pragma once
-#include <cstddef>
-#include <algorithm>
-#include <cstdint>
-#include <cstring>
-#include <type_traits>
-#include <vector>
-
 #include <thrust/system_error.h>
 
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "host/backend/algorithms.hpp"
 #include "host/backend/backend_error.hpp"
@@ -39,7 +38,18 @@ class DeviceResults {
   ResultSlot<T> reduce(Index begin, Index end, const F& f, T init, Op op) {
     static_assert(std::is_trivially_copyable<T>::value, "results are copied as bytes");
     const ResultSlot<T> slot{reserve(sizeof(T))};
-    parallel_reduce<B>(begin, end, f, init, op, reinterpret_cast<T*>(reinterpret_cast<char*>(raw(buffer_)) + slot.offset));
+    parallel_reduce<B>(begin, end, f, init, op,
+                       reinterpret_cast<T*>(reinterpret_cast<char*>(raw(buffer_)) + slot.offset));
+    return slot;
+  }
+
+  // A reduction that the caller runs, given where its result goes (e.g.
+  // half_pair_reduce): run(T* out).
+  template <class T, class Run>
+  ResultSlot<T> reduce_into(const Run& run) {
+    static_assert(std::is_trivially_copyable<T>::value, "results are copied as bytes");
+    const ResultSlot<T> slot{reserve(sizeof(T))};
+    run(reinterpret_cast<T*>(reinterpret_cast<char*>(raw(buffer_)) + slot.offset));
     return slot;
   }
 

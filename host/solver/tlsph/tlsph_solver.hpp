@@ -41,11 +41,12 @@
 #include "host/solver/tlsph/tlsph_body_kernels.hpp"
 #include "host/solver/tlsph/tlsph_fracture_kernels.hpp"
 #include "host/solver/tlsph/tlsph_relaxation.hpp"
+#include "kernels/core/step_statistics.hpp"
 #include "kernels/fracture/crack_tip.hpp"
 #include "kernels/tlsph/correction_matrix.hpp"
 #include "kernels/tlsph/deformation_rate.hpp"
+#include "kernels/tlsph/deformation_rate_half.hpp"
 #include "kernels/tlsph/hourglass_indicator.hpp"
-#include "kernels/core/step_statistics.hpp"
 
 namespace mfsd {
 
@@ -285,8 +286,20 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       RateHalfStepFunctor<D, Real> f{
           v_.pairs,        v_.velocity, v_.correction,       v_.deformation_rate, v_.deformation_gradient,
           v_.displacement, half_dt,     statistics_functor()};
-      stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
-                                   StepStatisticsCombine<Real>{});
+      const StepStatistics<Real> init{Real(0), Real(0), Real(0), Real(0), n};
+      if constexpr (std::is_same<B, Cpu>::value) {
+        if (v_.half_bandwidth >= 0) {  // the half-pair loop, dF/dt summed in place of the rate
+          const RateHalfStepHalfFunctor<D, Real> h{f, v_.half_pairs, v_.volume};
+          stats_slot = results_.template reduce_into<StepStatistics<Real>>([&](StepStatistics<Real>* out) {
+            half_pair_reduce(
+                Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate, rate_workspace_, h,
+                [&](Index i, const Mat<D, Real>& total) { return h.finish(i, total); }, init,
+                StepStatisticsCombine<Real>{}, out);
+          });
+          return;
+        }
+      }
+      stats_slot = results_.reduce(Index(0), n, f, init, StepStatisticsCombine<Real>{});
     });
     // The step's one synchronisation: every sum of the step comes to the host.
     run("time_step", [&] {
@@ -625,6 +638,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
   }
 
   ReferenceNeighborList<B, D, Real> pairs_;
+  std::vector<Mat<D, Real>> rate_workspace_;  // the half-pair loop's buffers (CPU)
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
   TlsphRelaxation<B, D, Real> relaxation_;
   std::vector<double> gravity_at_start_;  // per body: sum m g . u0
