@@ -53,46 +53,56 @@ struct ReferenceNeighborList {
   }
 };
 
-// The half-pair list of `list` (see ReferenceNeighborList), on the host, once.
-// False, and nothing built, where a row is not sorted by j (a search without
-// reordering): the pair loops then take the full gather.
-template <class B, int D, class Real>
-bool build_half_pair_list(ReferenceNeighborList<B, D, Real>& list, Index n) {
-  const auto offsets = to_host<B>(list.offsets);
-  const auto neighbor = to_host<B>(list.neighbor);
-  for (Index i = 0; i < n; ++i)
-    for (PairIndex p = offsets[size_t(i)] + 1; p < offsets[size_t(i) + 1]; ++p)
-      if (neighbor[size_t(p)] <= neighbor[size_t(p) - 1]) return false;
-  const auto grad = to_host<B>(list.grad);
-  const auto stretch = to_host<B>(list.stretch);
-  const auto beta = to_host<B>(list.beta);
-  std::vector<PairIndex> half_offsets(static_cast<size_t>(n) + 1, 0);
-  std::vector<Index> half_neighbor;
-  std::vector<Vec<D, Real>> half_grad;
-  std::vector<Real> half_stretch, half_beta;
-  const size_t expected = size_t(offsets.back() / 2 + 1);
-  half_neighbor.reserve(expected + kPairPrefetchDistance);
-  half_grad.reserve(expected);
-  half_stretch.reserve(expected);
-  Index bandwidth = 0;
+// The half-pair list of `list` (see ReferenceNeighborList), once, CPU backend
+// only: read and written in place (no host copies, so the set-up's peak holds
+// the two lists and nothing more). False, and nothing built, where a row is
+// not sorted by j (a search without reordering): the pair loops then take the
+// full gather.
+template <int D, class Real>
+bool build_half_pair_list(ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
+  const PairIndex* offsets = raw(list.offsets);
+  const Index* neighbor = raw(list.neighbor);
+  bool sorted = true;
+  std::vector<PairIndex> first(static_cast<size_t>(n));  // the first pair with j > i, per row
+#pragma omp parallel for schedule(static) reduction(&& : sorted)
   for (Index i = 0; i < n; ++i) {
-    for (PairIndex p = offsets[size_t(i)]; p < offsets[size_t(i) + 1]; ++p) {
-      const Index j = neighbor[size_t(p)];
-      if (j <= i) continue;
-      bandwidth = std::max(bandwidth, j - i);
-      half_neighbor.push_back(j);
-      half_grad.push_back(grad[size_t(p)]);
-      half_stretch.push_back(stretch[size_t(p)]);
-      if (!beta.empty()) half_beta.push_back(beta[size_t(p)]);
+    PairIndex u = offsets[i + 1];
+    for (PairIndex p = offsets[i]; p < offsets[i + 1]; ++p) {
+      if (p > offsets[i] && neighbor[p] <= neighbor[p - 1]) sorted = false;
+      if (neighbor[p] > i && u == offsets[i + 1]) u = p;
     }
-    half_offsets[size_t(i) + 1] = PairIndex(half_grad.size());
+    first[size_t(i)] = u;
   }
-  half_neighbor.resize(half_neighbor.size() + kPairPrefetchDistance, 0);  // padded for the prefetch
-  from_host<B>(half_offsets, list.half_offsets);
-  from_host<B>(half_neighbor, list.half_neighbor);
-  from_host<B>(half_grad, list.half_grad);
-  from_host<B>(half_stretch, list.half_stretch);
-  from_host<B>(half_beta, list.half_beta);
+  if (!sorted) return false;
+  std::vector<PairIndex> half_offsets(static_cast<size_t>(n) + 1, 0);
+  for (Index i = 0; i < n; ++i)
+    half_offsets[size_t(i) + 1] = half_offsets[size_t(i)] + (offsets[i + 1] - first[size_t(i)]);
+  const size_t total = size_t(half_offsets.back());
+  list.half_offsets.resize(half_offsets.size());
+  std::copy(half_offsets.begin(), half_offsets.end(), raw(list.half_offsets));
+  list.half_neighbor.resize(total + kPairPrefetchDistance, 0);  // padded for the prefetch
+  list.half_grad.resize(total);
+  list.half_stretch.resize(total);
+  if (!list.beta.empty()) list.half_beta.resize(total);
+  const Vec<D, Real>* grad = raw(list.grad);
+  const Real* stretch = raw(list.stretch);
+  const Real* beta = list.beta.empty() ? nullptr : raw(list.beta);
+  Index* hn = raw(list.half_neighbor);
+  Vec<D, Real>* hg = raw(list.half_grad);
+  Real* hs = raw(list.half_stretch);
+  Real* hb = beta ? raw(list.half_beta) : nullptr;
+  Index bandwidth = 0;
+#pragma omp parallel for schedule(static) reduction(max : bandwidth)
+  for (Index i = 0; i < n; ++i) {
+    PairIndex q = half_offsets[size_t(i)];
+    for (PairIndex p = first[size_t(i)]; p < offsets[i + 1]; ++p, ++q) {
+      hn[q] = neighbor[p];
+      hg[q] = grad[p];
+      hs[q] = stretch[p];
+      if (hb) hb[q] = beta[p];
+      bandwidth = std::max(bandwidth, neighbor[p] - i);
+    }
+  }
   list.bandwidth = bandwidth;
   return true;
 }
