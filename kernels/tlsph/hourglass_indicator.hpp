@@ -7,6 +7,7 @@
 // are left out of the mean.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/neighbors/half_pair_sink.hpp"
 #include "kernels/tlsph/e_hat.hpp"
 #include "kernels/tlsph/reference_pairs.hpp"
 
@@ -43,6 +44,48 @@ struct HourglassIndicatorFunctor {
       ++count;
     }
     indicator[i] = count > 0 ? sum / Real(count) : Real(0);
+  }
+};
+
+// The same mean in the half-pair loop (issue 24; host/backend/cpu.hpp):
+// |e_hat_ji| = |e_hat_ij| (e_hat_ji = -e_hat_ij), so each pair's value and
+// its count go to both particles.
+template <class Real>
+struct SumCount {
+  Real sum, count;
+  MFSD_HD SumCount& operator+=(const SumCount& o) {
+    sum += o.sum;
+    count += o.count;
+    return *this;
+  }
+};
+
+template <int D, class Real>
+struct HourglassIndicatorHalfFunctor {
+  ReferencePairs<D, Real> half;  // each row's pairs with j > i
+  const Mat<D, Real>* inverse_F;
+  const Vec<D, Real>* displacement;
+  Real* indicator;
+
+  MFSD_HD void operator()(Index i, const HalfPairSink<SumCount<Real>>& sink) const {
+    const Vec<D, Real> ui = displacement[i];
+    const Mat<D, Real> Fi_inv = inverse_F[i];
+    SumCount<Real> own{Real(0), Real(0)};
+    for (PairIndex p = half.offsets[i]; p < half.offsets[i + 1]; ++p) {
+      const Index j = half.neighbor[p];
+      const Vec<D, Real> g = half.grad[p];
+      const Real g2 = squared_norm(g);
+      if (g2 == Real(0)) continue;
+      const Vec<D, Real> h = scaled_e_hat(Fi_inv, inverse_F[j], ui, displacement[j], g, half.stretch[p]);
+      const SumCount<Real> e{math::sqrt(squared_norm(h) / g2), Real(1)};
+      own += e;
+      sink.add(j, e);
+    }
+    sink.add(i, own);
+  }
+
+  MFSD_HD void finish(Index i, const SumCount<Real>& t) const {
+    indicator[i] = t.count > Real(0) ? t.sum / t.count : Real(0);
   }
 };
 

@@ -35,7 +35,21 @@ struct ReferenceNeighborList {
   DeviceVector<B, Real> half_stretch, half_beta;
   Index bandwidth = -1;
 
-  PairIndex pairs() const { return PairIndex(grad.size()); }
+  PairIndex total_pairs = 0;  // of the full list (kept when its rows are released)
+  bool full_rows = true;      // false after release_full_rows()
+
+  PairIndex pairs() const { return total_pairs; }
+
+  // After set-up, where every per-step pass runs the half-pair loop: the full
+  // rows' pair data go (offsets and gradient sums stay). Their views are null
+  // afterwards, so a pass that still read them would fail at once.
+  void release_full_rows() {
+    DeviceVector<B, Index>().swap(neighbor);
+    DeviceVector<B, Vec<D, Real>>().swap(grad);
+    DeviceVector<B, Real>().swap(stretch);
+    DeviceVector<B, Real>().swap(beta);
+    full_rows = false;
+  }
 
   ReferencePairs<D, Real> half_view() const {
     return ReferencePairs<D, Real>{raw(half_offsets), raw(half_neighbor), raw(half_grad),
@@ -48,6 +62,7 @@ struct ReferenceNeighborList {
   }
 
   ReferencePairs<D, Real> view() const {
+    if (!full_rows) return ReferencePairs<D, Real>{raw(offsets), nullptr, nullptr, nullptr, raw(gradient_sum), nullptr};
     return ReferencePairs<D, Real>{raw(offsets), raw(neighbor),     raw(grad),
                                    raw(stretch), raw(gradient_sum), beta.empty() ? nullptr : raw(beta)};
   }
@@ -143,6 +158,7 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
   list.cells = index.cells;
   DeviceVector<B, Index> count;
   const PairIndex total = count_pairs<B, D, double>(hood, bodies, n, count, list.offsets);
+  list.total_pairs = total;
   list.neighbor.resize(size_t(total) + kPairPrefetchDistance, 0);  // padded for the prefetch
   list.grad.resize(size_t(total));
   list.stretch.resize(size_t(total));

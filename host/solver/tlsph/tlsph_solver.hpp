@@ -245,9 +245,19 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     update_time_step(statistics());
     for (auto& k : bodies_) gravity_at_start_.push_back(k->energy(v_).gravity);  // with an initial displacement
 
+    // Where every per-step pass runs the half-pair loop (no relaxation, no
+    // phase field, whose passes read full rows), the full rows go.
+    const bool release = v_.half_bandwidth >= 0 && !relaxation_.enabled() && !has_fracture_;
+    if (release) {
+      pairs_.release_full_rows();
+      bind_views();
+    }
+
     // Set-up report.
-    const double pair_bytes = double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
-                                                        (paper_limiter ? sizeof(Real) : 0)) +
+    const double full_rows = release ? 0.0
+                                     : double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
+                                                                 (paper_limiter ? sizeof(Real) : 0));
+    const double pair_bytes = full_rows +
                               double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)) +  // offsets, gradient sum
                               pairs_.half_bytes();
     this->report_particles_and_pairs(to_host<B>(pairs_.offsets), pair_bytes);
@@ -628,6 +638,16 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
   void compute_hourglass_indicator() {
     const Index n = particles_.size();
     parallel_for<B>(n, InverseDeformationFunctor<D, Real>{v_.deformation_gradient, v_.inverse_F});
+    if constexpr (std::is_same<B, Cpu>::value) {
+      if (v_.half_bandwidth >= 0) {
+        const HourglassIndicatorHalfFunctor<D, Real> h{v_.half_pairs, v_.inverse_F, v_.displacement,
+                                                       v_.hourglass_indicator};
+        indicator_sums_.resize(size_t(n));
+        half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, SumCount<Real>{Real(0), Real(0)}, indicator_sums_.data(),
+                      indicator_workspace_, h, [&](Index i, const SumCount<Real>& t) { h.finish(i, t); });
+        return;
+      }
+    }
     parallel_for<B>(
         n, HourglassIndicatorFunctor<D, Real>{v_.pairs, v_.inverse_F, v_.displacement, v_.hourglass_indicator});
   }
@@ -638,7 +658,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
   }
 
   ReferenceNeighborList<B, D, Real> pairs_;
-  std::vector<Mat<D, Real>> rate_workspace_;  // the half-pair loop's buffers (CPU)
+  std::vector<Mat<D, Real>> rate_workspace_;                          // the half-pair loop's buffers (CPU)
+  std::vector<SumCount<Real>> indicator_sums_, indicator_workspace_;  // the indicator's, at output times
   std::vector<std::unique_ptr<BodyKernels<B, D, Real>>> bodies_;
   TlsphRelaxation<B, D, Real> relaxation_;
   std::vector<double> gravity_at_start_;  // per body: sum m g . u0
