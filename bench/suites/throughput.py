@@ -3,16 +3,23 @@ peak memory per particle of the TLSPH step (genog, neo-Hookean) for the
 bending column 3D (about 10k, 80k, 650k particles) and the oscillating plate
 2D (three sizes), and of the ULSPH acoustic step (gnog, dual-criteria
 stepping: the neighbour search once per advection step) for the oscillating
-plate of seed 002 (three sizes), on 1 and all threads, in float and double.
+plate of seed 002 (three sizes), and the twisting column at about 51k
+particles and 154 neighbours (issue 24's side-by-side case; ns per
+pair-step), on 1 and all threads, in float and double; then issue 24's
+targets, met or not, from the rows of the same run.
 A fixed number of steps after a warm-up; the median of several repeats."""
 import os
 
 import bench_lib as b
 
+TWISTING = "configs/twisting_column_3d.json"
+# Issue 24's side-by-side case: about 51k particles and 154 neighbours.
+TWIST_SETS = {"solver.h_over_dp": 1.66}
 CASES = [  # (label, scene, H/dp)
     ("bending column 3D", b.BENDING, 12),
     ("bending column 3D", b.BENDING, 24),
     ("bending column 3D", b.BENDING, 48),
+    ("twisting column 3D, h = 1.66 dp", TWISTING, 20),
     ("oscillating plate 2D", b.PLATE, 20),
     ("oscillating plate 2D", b.PLATE, 40),
     ("oscillating plate 2D", b.PLATE, 80),
@@ -39,7 +46,8 @@ def main(args):
         for precision in ("double", "float"):
             for t in threads:
                 hourglass = "gnog" if scene == b.PLATE_ULSPH else "genog"
-                sets = {"constants.H_over_dp": res, "solver.hourglass": hourglass, **b.QUIET_OUTPUT}
+                sets = {"constants.H_over_dp": res, "solver.hourglass": hourglass, **b.QUIET_OUTPUT,
+                        **(TWIST_SETS if scene == TWISTING else {})}
                 out = os.path.join(b.OUT, "throughput", f"{os.path.basename(scene)[:-5]}_{res}_{precision}_{t}")
                 # Size the run from a one-step probe of the particle count.
                 probe, _, _ = b.run(scene, sets, out, threads=t, precision=precision, backend=args.backend,
@@ -59,15 +67,17 @@ def main(args):
                     "model_bytes_per_particle": timing["bytes_per_particle"],
                     "setup_seconds": timing["setup_seconds"],
                 })
-    md = ["| case | H/dp | particles | nbrs | precision | threads | M particle-steps/s | ms/step | "
-          "stage shares | peak memory [B/particle] |", "|" + "---|" * 10]
+    md = ["| case | H/dp | particles | nbrs | precision | threads | M particle-steps/s | ns per pair-step | ms/step | "
+          "stage shares | peak memory [B/particle] |", "|" + "---|" * 11]
     for r in rows:
         s = r["stages"]
         keys = SHARES["ulsph" if r["scene"] == b.PLATE_ULSPH else "tlsph"]
         share = ", ".join(f"{k} {100 * s[k]['share']:.0f} %" for k in keys if k in s)
         md.append(f"| {r['case']} | {r['H_over_dp']} | {r['particles']} | {r['neighbors_per_particle']:.1f} | "
                   f"{r['precision']} | {r['threads'] or 'gpu'} | {b.mega(r['particle_steps_per_second']):.2f} | "
+                  f"{pair_ns(r):.2f} | "
                   f"{r['microseconds_per_step'] / 1e3:.2f} | {share} | {r['peak_memory_bytes_per_particle']:.0f} |")
+    md += targets(rows, threads[-1])
     speedups = []
     if len(threads) > 1:
         md += ["", f"Speed-up from 1 to {threads[-1]} threads:", "",
@@ -87,6 +97,35 @@ def main(args):
     md.append(f"![throughput]({os.path.basename(stem)}.png)\n")
     b.write_results("throughput", {"machine": args.machine, "rows": rows, "speedups": speedups},
                     "\n".join(md) + "\n", args.command)
+
+
+def pair_ns(r):
+    return 1e9 / r["particle_steps_per_second"] / r["neighbors_per_particle"]
+
+
+# Issue 24's targets (benchmarks, not tests), checked on the rows of this run.
+TARGETS = [  # (what, case label, H/dp, precision, value, bound, "min" | "max")
+    ("bending column 84,672 particles, genog, double, M particle-steps/s", "bending column 3D", 24, "double",
+     lambda r: b.mega(r["particle_steps_per_second"]), 4.0, "min"),
+    ("bending column 84,672 particles, genog, float, M particle-steps/s", "bending column 3D", 24, "float",
+     lambda r: b.mega(r["particle_steps_per_second"]), 6.0, "min"),
+    ("twisting column about 51k particles, about 154 neighbours, double, ns per pair-step",
+     "twisting column 3D, h = 1.66 dp", 20, "double", pair_ns, 3.5, "max"),
+]
+
+
+def targets(rows, threads):
+    out = ["", f"Targets (issue 24), at {threads} threads:", "", "| target | measured | bound | met |",
+           "|---|---|---|---|"]
+    for what, label, res, precision, value, bound, kind in TARGETS:
+        r = next((x for x in rows if x["case"] == label and x["H_over_dp"] == res and x["precision"] == precision
+                  and x["threads"] == threads), None)
+        if r is None:
+            continue
+        v = value(r)
+        met = v >= bound if kind == "min" else v <= bound
+        out.append(f"| {what} | {v:.2f} | {'>=' if kind == 'min' else '<='} {bound} | {'yes' if met else 'no'} |")
+    return out
 
 
 def plot(rows, threads, path):
