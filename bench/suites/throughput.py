@@ -12,14 +12,13 @@ import os
 
 import bench_lib as b
 
-TWISTING = "configs/twisting_column_3d.json"
 # Issue 24's side-by-side case: about 51k particles and 154 neighbours.
 TWIST_SETS = {"solver.h_over_dp": 1.66}
 CASES = [  # (label, scene, H/dp)
     ("bending column 3D", b.BENDING, 12),
     ("bending column 3D", b.BENDING, 24),
     ("bending column 3D", b.BENDING, 48),
-    ("twisting column 3D, h = 1.66 dp", TWISTING, 20),
+    ("twisting column 3D, h = 1.66 dp", b.TWISTING, 20),
     ("oscillating plate 2D", b.PLATE, 20),
     ("oscillating plate 2D", b.PLATE, 40),
     ("oscillating plate 2D", b.PLATE, 80),
@@ -47,7 +46,7 @@ def main(args):
             for t in threads:
                 hourglass = "gnog" if scene == b.PLATE_ULSPH else "genog"
                 sets = {"constants.H_over_dp": res, "solver.hourglass": hourglass, **b.QUIET_OUTPUT,
-                        **(TWIST_SETS if scene == TWISTING else {})}
+                        **(TWIST_SETS if scene == b.TWISTING else {})}
                 out = os.path.join(b.OUT, "throughput", f"{os.path.basename(scene)[:-5]}_{res}_{precision}_{t}")
                 # Size the run from a one-step probe of the particle count.
                 probe, _, _ = b.run(scene, sets, out, threads=t, precision=precision, backend=args.backend,
