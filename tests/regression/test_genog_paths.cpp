@@ -13,6 +13,7 @@
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_reader.hpp"
 #include "host/solver/solver.hpp"
+#include "tests/regression/field_difference.hpp"
 
 using namespace mfsd;
 
@@ -44,16 +45,6 @@ Snapshot run(const std::string& config, const std::vector<std::string>& sets, bo
   solver->initialize();
   for (long s = 0; s < steps; ++s) solver->step();
   return solver->snapshot();
-}
-
-// max |a - b| over max |a| of a field (0 for a field that is zero in both).
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0, scale = 0;
-  for (size_t k = 0; k < a.size(); ++k) {
-    diff = std::max(diff, std::abs(a[k] - b[k]));
-    scale = std::max(scale, std::abs(a[k]));
-  }
-  return scale > 0 ? diff / scale : diff;
 }
 
 }  // namespace
