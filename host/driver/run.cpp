@@ -1,8 +1,8 @@
 #include "host/driver/run.hpp"
 
+#include <omp.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -126,11 +126,20 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     restart = find_restart(options.restart, doc, options);
     saved = read_checkpoint(restart->folder);
   }
-  const InitialParticles particles = generate_particles(scene);
+  InitialParticles particles = generate_particles(scene);
   std::vector<long> body_particles;
   for (const auto& r : particles.body_range) body_particles.push_back(long(r.end - r.begin));
-  check_run_memory(scene, body_particles, options.solver.precision, options.solver.backend);
+  check_run_memory(scene, body_particles, options.solver);
   std::unique_ptr<Solver> solver = make_solver(scene, particles, options.solver);
+  // The solver keeps its own copy: of the driver's, only what the outputs
+  // read stays (the measure planes' sizes, the rigid bodies' markers), so
+  // that the set-up's peak memory does not hold the particles twice.
+  {
+    InitialParticles kept;
+    kept.measure_particles = std::move(particles.measure_particles);
+    kept.rigid_markers = std::move(particles.rigid_markers);
+    particles = std::move(kept);
+  }
 
   const std::string dir =
       restart ? restart->output_dir : (options.output_dir.empty() ? "out/" + scene.name : options.output_dir);

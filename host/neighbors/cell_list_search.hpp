@@ -136,18 +136,29 @@ CellNeighborhood<D, P> cell_neighborhood(ParticleSet<B>& particles, const char* 
 }
 
 // CSR offsets (n + 1) of the pairs within each body's support radius;
-// returns their number. `count` is scratch of n entries.
+// returns their number. `count` is scratch of n entries. Where `upper_offsets`
+// is given, also the offsets of each row's pairs with j > i (a half-pair list)
+// and their number in *upper_total.
 template <class B, int D, class P>
 PairIndex count_pairs(CellNeighborhood<D, P> hood, const std::vector<BodySearch>& bodies, Index n,
-                      DeviceVector<B, Index>& count, DeviceVector<B, PairIndex>& offsets) {
+                      DeviceVector<B, Index>& count, DeviceVector<B, PairIndex>& offsets,
+                      DeviceVector<B, PairIndex>* upper_offsets = nullptr, PairIndex* upper_total = nullptr) {
   count.assign(size_t(n), 0);
+  DeviceVector<B, Index> upper;
+  if (upper_offsets) upper.assign(size_t(n), 0);
   for (const auto& b : bodies) {
     hood.radius2 = support_radius2<P>(b.smoothing_length);
-    parallel_for<B>(b.range.begin, b.range.end, NeighborCountFunctor<D, P>{hood, raw(count)});
+    parallel_for<B>(b.range.begin, b.range.end,
+                    NeighborCountFunctor<D, P>{hood, raw(count), upper_offsets ? raw(upper) : nullptr});
   }
   offsets.resize(size_t(n) + 1);
   const PairIndex total = exclusive_scan<B, Index, PairIndex>(count, offsets);
   offsets[size_t(n)] = total;
+  if (upper_offsets) {
+    upper_offsets->resize(size_t(n) + 1);
+    *upper_total = exclusive_scan<B, Index, PairIndex>(upper, *upper_offsets);
+    (*upper_offsets)[size_t(n)] = *upper_total;
+  }
   return total;
 }
 

@@ -124,9 +124,11 @@ struct CellNeighborhood {
 
 struct CountVisitor {
   Index count = 0;
+  Index self = 0, upper = 0;  // upper: the neighbours j > self (a half-pair list's row)
   template <class V, class P>
-  MFSD_HD void operator()(Index, const V&, P) {
+  MFSD_HD void operator()(Index j, const V&, P) {
     ++count;
+    if (j > self) ++upper;
   }
 };
 
@@ -134,10 +136,13 @@ template <int D, class P = double>
 struct NeighborCountFunctor {
   CellNeighborhood<D, P> hood;
   Index* count;
+  Index* upper = nullptr;  // where set, also the count of neighbours j > i
   MFSD_HD void operator()(Index i) const {
     CountVisitor v;
+    v.self = i;
     hood.for_each(i, v);
     count[i] = v.count;
+    if (upper) upper[i] = v.upper;
   }
 };
 

@@ -13,11 +13,13 @@
 
 namespace mfsd {
 
+// The rows of the sums W_i = V0_i sum_j (f_j - f_i) (x) g_ij of a vector
+// field f, each pair once; the two finishes below turn them into dF/dt.
 template <int D, class Real>
-struct RateHalfStepHalfFunctor {
-  RateHalfStepFunctor<D, Real> f;  // fields, the half step and the statistics
-  ReferencePairs<D, Real> half;    // each row's pairs with j > i
-  const Real* volume;              // V0
+struct HalfGradientRows {
+  ReferencePairs<D, Real> half;  // each row's pairs with j > i
+  const Vec<D, Real>* field;     // f (the velocity, or a displacement for F = I + grad u)
+  const Real* volume;            // V0
 
   using Acc = Mat<D, Real>;
 
@@ -28,14 +30,6 @@ struct RateHalfStepHalfFunctor {
       row(i, sink);
   }
 
-  MFSD_HD StepStatistics<Real> finish(Index i, const Acc& total) const {
-    const Mat<D, Real> dF = total * (Real(1) / volume[i]) * f.correction[i];
-    f.rate[i] = dF;
-    f.deformation_gradient[i] += dF * f.half_dt;
-    f.displacement[i] += f.velocity[i] * f.half_dt;
-    return f.statistics(i);
-  }
-
  private:
   // Two forms of one row, each the faster in one precision with g++ -O3
   // (bench/pair_loop_ab.py, bending column 84,672 particles, deformation_rate
@@ -43,13 +37,13 @@ struct RateHalfStepHalfFunctor {
   // (double 0.74, float 1.43: the float lanes are shuffled), and on scalars
   // written into the sums directly (double 1.05, float 0.80).
   MFSD_HD void row(Index i, const HalfPairSink<Acc>& sink) const {
-    const Vec<D, Real> vi = f.velocity[i];
+    const Vec<D, Real> vi = field[i];
     const Real Vi = volume[i];
     Acc own = Acc::zero();
     for (PairIndex p = half.offsets[i]; p < half.offsets[i + 1]; ++p) {
       const Index j = half.neighbor[p];
-      prefetch(&f.velocity[half.neighbor[p + kPairPrefetchDistance]]);
-      const Vec<D, Real> d = (f.velocity[j] - vi) * Vi;
+      prefetch(&field[half.neighbor[p + kPairPrefetchDistance]]);
+      const Vec<D, Real> d = (field[j] - vi) * Vi;
       const Vec<D, Real> g = half.grad[p];
       Acc x;
       for (int a = 0; a < D; ++a)
@@ -61,13 +55,13 @@ struct RateHalfStepHalfFunctor {
   }
 
   MFSD_HD void row_scalar(Index i, const HalfPairSink<Acc>& sink) const {
-    const Vec<D, Real> vi = f.velocity[i];
+    const Vec<D, Real> vi = field[i];
     const Real Vi = volume[i];
     Real own[D][D] = {};
     for (PairIndex p = half.offsets[i]; p < half.offsets[i + 1]; ++p) {
       const Index j = half.neighbor[p];
-      prefetch(&f.velocity[half.neighbor[p + kPairPrefetchDistance]]);
-      const Vec<D, Real> vj = f.velocity[j];
+      prefetch(&field[half.neighbor[p + kPairPrefetchDistance]]);
+      const Vec<D, Real> vj = field[j];
       const Vec<D, Real> g = half.grad[p];
       Real d[D];
       for (int a = 0; a < D; ++a) d[a] = (vj.v[a] - vi.v[a]) * Vi;
@@ -83,6 +77,39 @@ struct RateHalfStepHalfFunctor {
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b) ai.m[a][b] += own[a][b];
   }
+};
+
+// The step's last pass: the rate, F and u at the half step, the statistics.
+template <int D, class Real>
+struct RateHalfStepHalfFunctor {
+  RateHalfStepFunctor<D, Real> f;  // fields, the half step and the statistics
+  HalfGradientRows<D, Real> rows;  // over f.velocity
+
+  using Acc = Mat<D, Real>;
+
+  MFSD_HD void operator()(Index i, const HalfPairSink<Acc>& sink) const { rows(i, sink); }
+
+  MFSD_HD StepStatistics<Real> finish(Index i, const Acc& total) const {
+    const Mat<D, Real> dF = total * (Real(1) / rows.volume[i]) * f.correction[i];
+    f.rate[i] = dF;
+    f.deformation_gradient[i] += dF * f.half_dt;
+    f.displacement[i] += f.velocity[i] * f.half_dt;
+    return f.statistics(i);
+  }
+};
+
+// DeformationRateFunctor (deformation_rate.hpp) in the half-pair loop:
+// rate_i = sum_j (f_j - f_i) (x) g_ij B0_i (seed 000 eq. 22).
+template <int D, class Real>
+struct DeformationRateHalfFunctor {
+  HalfGradientRows<D, Real> rows;
+  const Mat<D, Real>* correction;  // B0
+  Mat<D, Real>* rate;
+
+  using Acc = Mat<D, Real>;
+
+  MFSD_HD void operator()(Index i, const HalfPairSink<Acc>& sink) const { rows(i, sink); }
+  MFSD_HD void finish(Index i, const Acc& total) const { rate[i] = total * (Real(1) / rows.volume[i]) * correction[i]; }
 };
 
 }  // namespace mfsd

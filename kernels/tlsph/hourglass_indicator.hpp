@@ -4,7 +4,10 @@
 // zero for any linear deformation, large for zigzag (hourglass) patterns.
 // From the pair data: |e_hat_ij| = |h_ij| / |g_ij| (acceleration.hpp); pairs
 // with a zero kernel gradient (at the support edge) carry no direction and
-// are left out of the mean.
+// are left out of the mean. F^{-1} comes from a scratch field filled by
+// InverseDeformationFunctor, or, where the run keeps none (3-D genog with the
+// packed record on the CPU: the memory of a large run, issue 24 item 6), is
+// inverted per pair from F at output times.
 #pragma once
 #include "kernels/core/mat.hpp"
 #include "kernels/neighbors/half_pair_sink.hpp"
@@ -21,10 +24,18 @@ struct InverseDeformationFunctor {
   MFSD_HD void operator()(Index i) const { inverse_F[i] = inverse(deformation_gradient[i]); }
 };
 
+// F_j^{-1}: from the scratch field where there is one, else inverted from F_j.
+template <int D, class Real>
+struct InverseOfF {
+  const Mat<D, Real>* inverse_F;  // may be null
+  const Mat<D, Real>* deformation_gradient;
+  MFSD_HD Mat<D, Real> operator[](Index j) const { return inverse_F ? inverse_F[j] : inverse(deformation_gradient[j]); }
+};
+
 template <int D, class Real>
 struct HourglassIndicatorFunctor {
   ReferencePairs<D, Real> pairs;
-  const Mat<D, Real>* inverse_F;
+  InverseOfF<D, Real> inverse_F;
   const Vec<D, Real>* displacement;
   Real* indicator;
 
@@ -63,7 +74,7 @@ struct SumCount {
 template <int D, class Real>
 struct HourglassIndicatorHalfFunctor {
   ReferencePairs<D, Real> half;  // each row's pairs with j > i
-  const Mat<D, Real>* inverse_F;
+  InverseOfF<D, Real> inverse_F;
   const Vec<D, Real>* displacement;
   Real* indicator;
 

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "host/backend/cpu.hpp"
-#include "host/solver/tlsph/reference_neighbor_list.hpp"
 #include "host/particles/field_names.hpp"
+#include "host/solver/tlsph/reference_neighbor_list.hpp"
 
 namespace mfsd::test {
 
@@ -33,9 +33,13 @@ struct Fixture {
   ParticleSet<Cpu> particles;
   ReferenceNeighborList<Cpu, D, Real> pairs;
 
-  // All particles in body 0 unless `body` is given; uniform volume dp^D.
+  // All particles in body 0 unless `body` is given; uniform volume dp^D
+  // unless `volume` is given. With `moments` the search leaves each particle's
+  // moment matrix in the field correction_matrix; `half_only` stores only the
+  // half-pair list (build_reference_neighbor_list).
   Fixture(const std::vector<Vec<D, double>>& x, double dp, double h, bool reorder, std::vector<int> body = {},
-          bool beta = false, const std::vector<Notch<D>>& notches = {})
+          bool beta = false, const std::vector<Notch<D>>& notches = {}, std::vector<Real> volume = {},
+          bool moments = false, bool half_only = false)
       : particles(Index(x.size())) {
     const size_t n = x.size();
     if (body.empty()) body.assign(n, 0);
@@ -54,8 +58,9 @@ struct Fixture {
     particles.add<Vec<D, Real>>(field::reference_position);
     from_host<Cpu>(xr, particles.buffer<Vec<D, Real>>(field::reference_position));
     particles.add<Real>(field::volume);
-    std::vector<Real> vol(n, Real(std::pow(dp, D)));
-    from_host<Cpu>(vol, particles.buffer<Real>(field::volume));
+    if (volume.empty()) volume.assign(n, Real(std::pow(dp, D)));
+    from_host<Cpu>(volume, particles.buffer<Real>(field::volume));
+    if (moments) particles.add<Mat<D, Real>>(field::correction_matrix);
     int bodies = 1;
     for (int b : body) bodies = std::max(bodies, b + 1);
     // Bodies must be contiguous ranges in the input.
@@ -66,7 +71,8 @@ struct Fixture {
         if (body[i] == b) lo = std::min(lo, Index(i)), hi = std::max(hi, Index(i + 1));
       search.push_back(BodySearch{BodyRange{lo, hi}, h});
     }
-    pairs = build_reference_neighbor_list<Cpu, D, Real>(particles, search, reorder, beta, notches);
+    pairs = build_reference_neighbor_list<Cpu, D, Real>(particles, search, reorder, beta, notches,
+                                                        moments ? field::correction_matrix : nullptr, half_only);
   }
 
   template <class T>

@@ -236,6 +236,22 @@ class ParticleSolver : public Solver {
       ranges_.push_back(BodyRange{Index(init_.body_range[b].begin), Index(init_.body_range[b].end)});
   }
 
+  // At the end of set-up: the per-particle arrays of the initial particles,
+  // now in the particle fields, go, so that a run holds its state and not a
+  // second copy of it (issue 24, item 6); the id lists stay.
+  void release_initial_particles() {
+    InitialParticles kept;
+    kept.dimension = init_.dimension;
+    kept.body_range = std::move(init_.body_range);
+    kept.probe_particles = std::move(init_.probe_particles);
+    kept.constrained_count = std::move(init_.constrained_count);
+    kept.clamp_particles = std::move(init_.clamp_particles);
+    kept.condition_particles = std::move(init_.condition_particles);
+    kept.measure_particles = std::move(init_.measure_particles);
+    kept.rigid_markers = std::move(init_.rigid_markers);
+    init_ = std::move(kept);
+  }
+
   // where[id] = the current index of the particle with original id `id`.
   std::vector<Index> locate() {
     const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
@@ -299,8 +315,8 @@ class ParticleSolver : public Solver {
   void setup_contact(std::vector<unsigned char> near_surface) {
     const ContactSpec& spec = scene_.contact;
     if (!spec.enabled) return;
-    contact_part_ = ContactPartSetup<Real>{{}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(field::volume)),
-                                           std::move(near_surface)};
+    contact_part_ = ContactPartSetup<Real>{
+        {}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(field::volume)), std::move(near_surface)};
     size_t in_contact = 0;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       contact_part_.scene_body.push_back(b);

@@ -37,6 +37,10 @@ class CoupledSolver : public Solver {
         rigid_markers_(init.rigid_markers) {
     solvers_[0] = tlsph(parts_[0].scene, parts_[0].particles, options);
     solvers_[1] = ulsph(parts_[1].scene, parts_[1].particles, options);
+    for (size_t q = 0; q < kParts; ++q) {  // each solver holds its own copy of the particles
+      part_size_[q] = long(parts_[q].particles.size());
+      parts_[q].particles = InitialParticles{};
+    }
   }
 
   void initialize() override {
@@ -47,8 +51,7 @@ class CoupledSolver : public Solver {
         cp.push_back(solvers_[q]->contact_part());
         for (size_t& b : cp.back().scene_body) b = parts_[q].scene_body[b];
       }
-      if (!cp[0].scene_body.empty() && !cp[1].scene_body.empty())
-        between_.setup(scene_, rigid_markers_, cp, true);
+      if (!cp[0].scene_body.empty() && !cp[1].scene_body.empty()) between_.setup(scene_, rigid_markers_, cp, true);
     }
     merge_timers();
   }
@@ -63,8 +66,7 @@ class CoupledSolver : public Solver {
       if (between_.enabled()) {
         const int id = own_timers_.id("contact_between");
         clock_.start(id);
-        const std::array<Kinematics<D, Real>, kParts> views{solvers_[0]->contact_view(),
-                                                             solvers_[1]->contact_view()};
+        const std::array<Kinematics<D, Real>, kParts> views{solvers_[0]->contact_view(), solvers_[1]->contact_view()};
         // Its sums travel with the last solver's (no host wait of its own).
         between_.apply(views.data(), time(), dt, solvers_[kParts - 1]->step_results());
         clock_.stop(id, own_timers_);
@@ -133,7 +135,7 @@ class CoupledSolver : public Solver {
     long particles = 0;
     for (size_t q = 0; q < kParts; ++q) {
       const EnergySample s = solvers_[q]->energies();
-      const long n = long(parts_[q].particles.size());
+      const long n = part_size_[q];
       e.kinetic += s.kinetic;
       e.strain += s.strain;
       for (int a = 0; a < 3; ++a) e.momentum[a] += s.momentum[a];
@@ -248,7 +250,8 @@ class CoupledSolver : public Solver {
     for (size_t q = 0; q < kParts; ++q) {
       const SetupReport s = solvers_[q]->setup_report();
       r.particles += s.particles;
-      for (size_t b = 0; b < s.body_particles.size(); ++b) r.body_particles[parts_[q].scene_body[b]] = s.body_particles[b];
+      for (size_t b = 0; b < s.body_particles.size(); ++b)
+        r.body_particles[parts_[q].scene_body[b]] = s.body_particles[b];
       r.pairs += s.pairs;
       r.min_neighbors = std::min(r.min_neighbors, s.min_neighbors);
       r.max_neighbors = std::max(r.max_neighbors, s.max_neighbors);
@@ -294,6 +297,7 @@ class CoupledSolver : public Solver {
 
   Scene scene_;
   std::array<MethodPart, kParts> parts_;
+  std::array<long, kParts> part_size_{};  // particles of each part
   std::vector<std::vector<Point3>> rigid_markers_;
   std::array<std::unique_ptr<Part>, kParts> solvers_;
   Contact<B, D, Real> between_;

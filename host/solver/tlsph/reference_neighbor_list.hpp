@@ -6,6 +6,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -122,16 +123,34 @@ bool build_half_pair_list(ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
   return true;
 }
 
+// The largest j - i of the half-pair list's pairs (its bandwidth), CPU.
+template <int D, class Real>
+Index half_pair_bandwidth(const ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
+  const PairIndex* offsets = raw(list.half_offsets);
+  const Index* neighbor = raw(list.half_neighbor);
+  Index bandwidth = 0;
+#pragma omp parallel for schedule(static) reduction(max : bandwidth)
+  for (Index i = 0; i < n; ++i)
+    for (PairIndex p = offsets[i]; p < offsets[i + 1]; ++p) bandwidth = std::max(bandwidth, neighbor[p] - i);
+  return bandwidth;
+}
+
 // Sorts particles by (body, cell) and, when `reorder`, permutes every field of
 // the set accordingly; then builds the CSR list. Reads the set-up field
 // reference_position_double, the body ids and the volumes. Pairs that a notch
-// cuts are left out (kernels/fracture/notch.hpp), before B0 and the gradient
-// sums are formed from the list.
+// cuts are left out (kernels/fracture/notch.hpp), before the gradient sums
+// and the moment matrices (into the field `moment_field` where named: B0's
+// inverse, correction_matrix.hpp) are formed over each neighbourhood.
+// With `half_only` (CPU backend, with `reorder`) only the half-pair list is
+// stored, filled straight from the search: the full rows' pair data are never
+// allocated (their offsets are kept: the neighbour counts), so the set-up's
+// peak holds one list, half the full one (issue 24, item 6).
 template <class B, int D, class Real>
-ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& particles,
-                                                                const std::vector<BodySearch>& bodies, bool reorder,
-                                                                bool with_beta,
-                                                                const std::vector<Notch<D>>& notches = {}) {
+ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(
+    ParticleSet<B>& particles, const std::vector<BodySearch>& bodies, bool reorder, bool with_beta,
+    const std::vector<Notch<D>>& notches = {}, const char* moment_field = nullptr, bool half_only = false) {
+  if (half_only && !(std::is_same<B, Cpu>::value && reorder))
+    throw std::logic_error("a half-pair list alone needs the CPU backend and the reordering search");
   const Index n = particles.size();
   const auto host_x = to_host<B>(particles.template buffer<Vec<D, double>>(field::reference_position_double));
   std::vector<double> lo(bodies.size() * D), hi(bodies.size() * D);
@@ -157,25 +176,42 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
   ReferenceNeighborList<B, D, Real> list;
   list.cells = index.cells;
   DeviceVector<B, Index> count;
-  const PairIndex total = count_pairs<B, D, double>(hood, bodies, n, count, list.offsets);
+  PairIndex half_total = 0;
+  const PairIndex total = count_pairs<B, D, double>(hood, bodies, n, count, list.offsets,
+                                                    half_only ? &list.half_offsets : nullptr, &half_total);
+  DeviceVector<B, Index>().swap(count);
   list.total_pairs = total;
-  list.neighbor.resize(size_t(total) + kPairPrefetchDistance, 0);  // padded for the prefetch
-  list.grad.resize(size_t(total));
-  list.stretch.resize(size_t(total));
+  const size_t stored = size_t(half_only ? half_total : total);
+  auto& neighbor = half_only ? list.half_neighbor : list.neighbor;
+  auto& grad = half_only ? list.half_grad : list.grad;
+  auto& stretch = half_only ? list.half_stretch : list.stretch;
+  auto& beta = half_only ? list.half_beta : list.beta;
+  neighbor.resize(stored + kPairPrefetchDistance, 0);  // padded for the prefetch
+  grad.resize(stored);
+  stretch.resize(stored);
   list.gradient_sum.resize(size_t(n));
-  if (with_beta) list.beta.resize(size_t(total));
+  if (with_beta) beta.resize(stored);
+  Mat<D, Real>* moment = moment_field ? particles.template get<Mat<D, Real>>(moment_field) : nullptr;
   for (const auto& b : bodies) {
     hood.radius2 = support_radius2<double>(b.smoothing_length);
     ReferencePairFillFunctor<D, Real> fill{hood,
                                            WendlandC2<D, double>::make(b.smoothing_length),
                                            particles.template get<Real>(field::volume),
-                                           raw(list.offsets),
-                                           raw(list.neighbor),
-                                           raw(list.grad),
-                                           raw(list.stretch),
+                                           raw(half_only ? list.half_offsets : list.offsets),
+                                           raw(neighbor),
+                                           raw(grad),
+                                           raw(stretch),
                                            raw(list.gradient_sum),
-                                           with_beta ? raw(list.beta) : nullptr};
+                                           with_beta ? raw(beta) : nullptr,
+                                           moment,
+                                           half_only};
     parallel_for<B>(b.range.begin, b.range.end, fill);
+  }
+  if constexpr (std::is_same<B, Cpu>::value) {
+    if (half_only) {
+      list.full_rows = false;
+      list.bandwidth = half_pair_bandwidth(list, n);
+    }
   }
   return list;
 }

@@ -131,16 +131,23 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
         cut.body = int(b);
         notches.push_back(cut);
       }
-    pairs_ =
-        build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter, notches);
+    // The half-pair loop (issue 24) on the CPU: where every per-step pass runs
+    // it (no relaxation and no phase field, whose passes read full rows), its
+    // list is filled straight from the search and the full rows never exist;
+    // otherwise it is derived from the full list.
+    const bool half_loop = std::is_same<B, Cpu>::value && options_.pair_loop != SolverOptions::PairLoop::full;
+    const bool half_only = half_loop && scene_.solver.reorder && !scene_.solver.relaxation.enabled && !has_fracture_;
+    particles_.template add<Mat<D, Real>>(field::correction_matrix);  // the moment matrices, then B0
+    pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter,
+                                                       notches, field::correction_matrix, half_only);
     particles_.remove(field::reference_position_double);
-    if constexpr (std::is_same<B, Cpu>::value)  // the half-pair loop's list (issue 24)
-      if (options_.pair_loop != SolverOptions::PairLoop::full) build_half_pair_list(pairs_, n);
+    if constexpr (std::is_same<B, Cpu>::value)
+      if (half_loop && !half_only) build_half_pair_list(pairs_, n);
 
-    auto* B0 = particles_.template add<Mat<D, Real>>(field::correction_matrix);
     DeviceVector<B, unsigned char> regularized(size_t(n), 0);
     parallel_for<B>(
-        n, CorrectionMatrixFunctor<D, Real>{pairs_.view(), B0, raw(regularized), Real(scene_.solver.correction_floor)});
+        n, CorrectionFromMomentFunctor<D, Real>{particles_.template get<Mat<D, Real>>(field::correction_matrix),
+                                                raw(regularized), Real(scene_.solver.correction_floor)});
     report_.regularized_corrections =
         long(thrust::count(BackendTraits<B>::policy(), regularized.begin(), regularized.end(), (unsigned char)1));
 
@@ -148,14 +155,17 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     particles_.template add<Mat<D, Real>>(field::deformation_gradient);
     particles_.template add<Mat<D, Real>>(field::deformation_rate);
     particles_.template add<Vec<D, Real>>(field::acceleration);
-    particles_.template add<Mat<D, Real>>(field::force_stress);
-    particles_.template add<Mat<D, Real>>(field::inverse_deformation_gradient);  // genog + indicator scratch
+    // The packed neighbour record of the vectorized CPU force loop (3-D genog)
+    // holds Q and F^{-1} in place of the separate fields, which are then left
+    // out (the phase field's stress stage still writes Q); the indicator at
+    // output times takes a scratch F^{-1} of its own.
+    const bool record = scene_.solver.hourglass == HourglassControl::genog && D == 3 && std::is_same<B, Cpu>::value &&
+                        options_.packed_genog_record;
+    if (record) particles_.template add<GenogNeighborRecord<Real>>(field::genog_neighbor_record);
+    if (!record || has_fracture_) particles_.template add<Mat<D, Real>>(field::force_stress);
+    if (!record) particles_.template add<Mat<D, Real>>(field::inverse_deformation_gradient);  // genog + indicator
     if (scene_.solver.hourglass == HourglassControl::laplacian) particles_.template add<Real>(field::shear_coefficient);
     if (scene_.solver.hourglass == HourglassControl::genog) particles_.template add<Mat<D, Real>>(field::shear_stress);
-    // The packed neighbour record of the vectorized CPU force loop (3-D genog).
-    if (scene_.solver.hourglass == HourglassControl::genog && D == 3 && std::is_same<B, Cpu>::value &&
-        options_.packed_genog_record)
-      particles_.template add<GenogNeighborRecord<Real>>(field::genog_neighbor_record);
     particles_.template add<Real>(field::hourglass_indicator);
     particles_.template add<Real>(field::von_mises);
     particles_.template add<Real>(field::jacobian);
@@ -188,13 +198,18 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) body_props.push_back(props(b));
       // Contact candidates: the surface particles and their reference
       // neighbours (a layer one kernel support deep), in the solver's order.
+      // From the full rows, or from the half rows in both directions.
       std::vector<unsigned char> near_surface(size_t(n), 0);
-      const auto offsets = to_host<B>(pairs_.offsets);
-      const auto neighbor = to_host<B>(pairs_.neighbor);
+      const bool full = pairs_.full_rows;
+      const auto offsets = to_host<B>(full ? pairs_.offsets : pairs_.half_offsets);
+      const auto neighbor = to_host<B>(full ? pairs_.neighbor : pairs_.half_neighbor);
+      const auto surface = [&](Index i) { return init_.surface[size_t(ids[size_t(i)])] != 0; };
       for (Index i = 0; i < n; ++i) {
-        if (!init_.surface[size_t(ids[size_t(i)])]) continue;
-        near_surface[size_t(i)] = 1;
-        for (PairIndex k = offsets[size_t(i)]; k < offsets[size_t(i) + 1]; ++k) near_surface[size_t(neighbor[k])] = 1;
+        if (surface(i)) near_surface[size_t(i)] = 1;
+        for (PairIndex k = offsets[size_t(i)]; k < offsets[size_t(i) + 1]; ++k) {
+          if (surface(i)) near_surface[size_t(neighbor[k])] = 1;
+          if (!full && surface(neighbor[k])) near_surface[size_t(i)] = 1;
+        }
       }
       this->setup_contact(std::move(near_surface));
     }
@@ -219,15 +234,18 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
         if (scene_.conditions[c].type == ConditionSpec::Type::velocity)
           for (long id : init_.condition_particles[c].ids) held[size_t(where[size_t(id)])] = 1;
       relaxation_.setup(scene_.solver.relaxation, ranges_, density, viscosity,
-                        to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position)), support, held);
+                        r.enabled ? to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position))
+                                  : std::vector<Vec<D, Real>>{},
+                        support, held);
     }
     this->locate_probes(where);
+    const bool initial_displacement = !init_.displacement.empty();
+    this->release_initial_particles();
 
     // An initial displacement field deforms the body: F = I + grad u (seed 000
     // eq. 22 with u in place of v).
-    if (!init_.displacement.empty()) {
-      parallel_for<B>(n,
-                      DeformationRateFunctor<D, Real>{v_.pairs, v_.displacement, v_.correction, v_.deformation_rate});
+    if (initial_displacement) {
+      gradient_into_rate(v_.displacement);
       parallel_for<B>(n, AddIdentityFunctor<D, Real>{v_.deformation_rate, v_.deformation_gradient});
     }
     results_.clear();
@@ -238,7 +256,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     conditions_.collect(results_, v_);
 
     // Initial rates and forces, so that the first time step sees them.
-    parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, v_.velocity, v_.correction, v_.deformation_rate});
+    gradient_into_rate(v_.velocity);
     for (auto& k : bodies_) k->prepare_step(0.0);
     for (auto& k : bodies_) k->stress(v_, Real(0));
     for (auto& k : bodies_) k->acceleration(v_, Real(0));
@@ -254,9 +272,10 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     }
 
     // Set-up report.
-    const double full_rows = release ? 0.0
-                                     : double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
-                                                                 (paper_limiter ? sizeof(Real) : 0));
+    const double full_rows = !pairs_.full_rows
+                                 ? 0.0
+                                 : double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
+                                                             (paper_limiter ? sizeof(Real) : 0));
     const double pair_bytes = full_rows +
                               double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)) +  // offsets, gradient sum
                               pairs_.half_bytes();
@@ -299,7 +318,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       const StepStatistics<Real> init{Real(0), Real(0), Real(0), Real(0), n};
       if constexpr (std::is_same<B, Cpu>::value) {
         if (v_.half_bandwidth >= 0) {  // the half-pair loop, dF/dt summed in place of the rate
-          const RateHalfStepHalfFunctor<D, Real> h{f, v_.half_pairs, v_.volume};
+          const RateHalfStepHalfFunctor<D, Real> h{f, {v_.half_pairs, v_.velocity, v_.volume}};
           stats_slot = results_.template reduce_into<StepStatistics<Real>>([&](StepStatistics<Real>* out) {
             half_pair_reduce(
                 Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate, rate_workspace_, h,
@@ -452,7 +471,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     v_.deformation_gradient = particles_.template get<Mat<D, Real>>(field::deformation_gradient);
     v_.deformation_rate = particles_.template get<Mat<D, Real>>(field::deformation_rate);
     v_.correction = particles_.template get<Mat<D, Real>>(field::correction_matrix);
-    v_.force_stress = particles_.template get<Mat<D, Real>>(field::force_stress);
+    v_.force_stress = opt_mat(field::force_stress);
     v_.shear_coefficient = opt_real(field::shear_coefficient);
     v_.shear_stress = opt_mat(field::shear_stress);
     v_.inverse_F = opt_mat(field::inverse_deformation_gradient);
@@ -635,12 +654,30 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     Base::fail(i, {"deformation_gradient", "has no finite inverse (|F^{-1}| is not finite)"});
   }
 
-  void compute_hourglass_indicator() {
+  // deformation_rate = sum_j (f_j - f_i) (x) g_ij B0_i (seed 000 eq. 22) of
+  // the field f (the velocity, or the initial displacement), in the pair loop
+  // the run takes.
+  void gradient_into_rate(const Vec<D, Real>* f) {
     const Index n = particles_.size();
-    parallel_for<B>(n, InverseDeformationFunctor<D, Real>{v_.deformation_gradient, v_.inverse_F});
     if constexpr (std::is_same<B, Cpu>::value) {
       if (v_.half_bandwidth >= 0) {
-        const HourglassIndicatorHalfFunctor<D, Real> h{v_.half_pairs, v_.inverse_F, v_.displacement,
+        const DeformationRateHalfFunctor<D, Real> h{{v_.half_pairs, f, v_.volume}, v_.correction, v_.deformation_rate};
+        half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate, rate_workspace_,
+                      h, [&](Index i, const Mat<D, Real>& total) { h.finish(i, total); });
+        return;
+      }
+    }
+    parallel_for<B>(n, DeformationRateFunctor<D, Real>{v_.pairs, f, v_.correction, v_.deformation_rate});
+  }
+
+  void compute_hourglass_indicator() {
+    const Index n = particles_.size();
+    // Without an F^{-1} field (the genog record) the functors invert F per pair.
+    if (v_.inverse_F) parallel_for<B>(n, InverseDeformationFunctor<D, Real>{v_.deformation_gradient, v_.inverse_F});
+    const InverseOfF<D, Real> inverse_F{v_.inverse_F, v_.deformation_gradient};
+    if constexpr (std::is_same<B, Cpu>::value) {
+      if (v_.half_bandwidth >= 0) {
+        const HourglassIndicatorHalfFunctor<D, Real> h{v_.half_pairs, inverse_F, v_.displacement,
                                                        v_.hourglass_indicator};
         indicator_sums_.resize(size_t(n));
         half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, SumCount<Real>{Real(0), Real(0)}, indicator_sums_.data(),
@@ -648,8 +685,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
         return;
       }
     }
-    parallel_for<B>(
-        n, HourglassIndicatorFunctor<D, Real>{v_.pairs, v_.inverse_F, v_.displacement, v_.hourglass_indicator});
+    parallel_for<B>(n,
+                    HourglassIndicatorFunctor<D, Real>{v_.pairs, inverse_F, v_.displacement, v_.hourglass_indicator});
   }
 
   void compute_observables() {

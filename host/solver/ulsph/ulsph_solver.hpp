@@ -135,6 +135,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     dt_next_ = std::min(acoustic_step(stats), advection_step_);
 
     report_.regularized_corrections = fallback_count_;
+    this->release_initial_particles();
     this->report_particles_and_pairs(to_host<B>(offsets_),
                                      double(pairs_) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
                                          double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)));
@@ -153,8 +154,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     const bool refresh = !rebuild_due_ && scene_.solver.ulsph.refresh_pairs;
     run("half_step", [&] {
       if (refresh)  // with x and V of the step's start for the refresh below
-        parallel_for<B>(n, ulsph::DisplacementHalfStepPositionVolumeFunctor<D, Real>{
-                               velocity(), displacement(), half_dt, position_volume()});
+        parallel_for<B>(n, ulsph::DisplacementHalfStepPositionVolumeFunctor<D, Real>{velocity(), displacement(),
+                                                                                     half_dt, position_volume()});
       else
         parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
     });
@@ -367,8 +368,12 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
 
   // x = X + u into current_position and V = m / rho into current_volume.
   ulsph::PositionVolumeFunctor<D, Real> position_volume() {
-    return {reference(), displacement(), real(field::mass), real(field::density),
-            particles_.template get<Vec<D, Real>>(field::current_position), real(field::current_volume)};
+    return {reference(),
+            displacement(),
+            real(field::mass),
+            real(field::density),
+            particles_.template get<Vec<D, Real>>(field::current_position),
+            real(field::current_volume)};
   }
 
   ulsph::PairRefreshFunctor<D, Real> pair_refresh(const BodySearch& s) {
@@ -474,7 +479,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
           hg == HourglassControl::none ? nullptr : particles_.template get<Vec<D, Real>>(field::hourglass_acceleration),
           acceleration(),
           numerical_work(dt),
-          Real(m.density * props(b).c0),  // Z = rho0 c0 (formulations.md 3)
+          Real(m.density * props(b).c0),                            // Z = rho0 c0 (formulations.md 3)
           Real(scene_.solver.ulsph.riemann_limiter / props(b).c0),  // eta / c0 (seed 002 ref. [38]); 0: none
           Real(xi),
           Real(props(b).G),
@@ -495,17 +500,9 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
     return transform_reduce<B>(
         ranges_[b].begin, ranges_[b].end,
-        ulsph::EnergyFunctor<D, Real>{velocity(),
-                                      displacement(),
-                                      real(field::mass),
-                                      real(field::density),
-                                      real(field::pressure),
-                                      mat(field::shear_stress),
-                                      real(field::dissipated_work),
-                                      optional(field::plastic_work),
-                                      props(b).K,
-                                      props(b).G,
-                                      g},
+        ulsph::EnergyFunctor<D, Real>{velocity(), displacement(), real(field::mass), real(field::density),
+                                      real(field::pressure), mat(field::shear_stress), real(field::dissipated_work),
+                                      optional(field::plastic_work), props(b).K, props(b).G, g},
         ulsph::EnergySums{0, 0, {0, 0, 0}, 0, 0, 0}, ulsph::EnergySumsPlus{});
   }
 
