@@ -25,9 +25,15 @@ TWISTING = "configs/twisting_column_3d.json"
 QUIET_OUTPUT = {"output.vtu": "false", "output.interval": 1e9, "output.probe_interval": 1e9}
 
 
+# Extra mfsd run options for every run of a suite (bench/run.py --mfsd-args,
+# e.g. --pair-layout sliced), and the tag its results' file names then carry.
+EXTRA_ARGS = []
+RESULT_TAG = ""
+
+
 def run(config, sets, outdir, threads=None, precision=None, backend="cpu", max_steps=None, warmup=0):
     """One mfsd run; returns (timing.json, run.json, peak resident memory in bytes)."""
-    cmd = [m.BINARY, "run", os.path.join(ROOT, config), "-o", outdir, "-q", "--backend", backend]
+    cmd = [m.BINARY, "run", os.path.join(ROOT, config), "-o", outdir, "-q", "--backend", backend] + EXTRA_ARGS
     for k, v in sets.items():
         cmd += ["--set", f"{k}={v}"]
     if threads and backend == "cpu":
@@ -97,7 +103,8 @@ def fma_peak():
 
 def result_stem(suite):
     os.makedirs(RESULTS, exist_ok=True)
-    return os.path.join(RESULTS, f"{suite}-{datetime.date.today().isoformat()}")
+    tag = f"-{RESULT_TAG}" if RESULT_TAG else ""
+    return os.path.join(RESULTS, f"{suite}-{datetime.date.today().isoformat()}{tag}")
 
 
 def write_results(suite, payload, markdown, command):

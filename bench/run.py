@@ -16,6 +16,7 @@
 Results: bench/results/<suite>-<date>.json, .md and .png."""
 import argparse
 import os
+import shlex
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -32,12 +33,16 @@ def main():
     p.add_argument("--quick", action="store_true", help="smaller cases and one repeat (a smoke run)")
     p.add_argument("--repeats", type=int, default=0, help="repeats per configuration (default 3, quick 1)")
     p.add_argument("--only", default="", help="throughput: only the cases whose label contains this text")
+    p.add_argument("--mfsd-args", default="", help="extra options for every mfsd run, e.g. \"--pair-layout sliced\"")
+    p.add_argument("--tag", default="", help="appended to the results' file names (<suite>-<date>-<tag>)")
     args = p.parse_args()
     if not os.path.exists(b.m.BINARY):
         sys.exit(f"[bench] no mfsd binary at {b.m.BINARY}; run scripts/bench.sh, which builds it")
     args.machine = b.machine(args.backend)
+    b.EXTRA_ARGS = shlex.split(args.mfsd_args)
+    b.RESULT_TAG = args.tag
     for suite in (SUITES if args.suite == "all" else [args.suite]):
-        args.command = "scripts/bench.sh " + " ".join([suite] + sys.argv[2:])
+        args.command = "scripts/bench.sh " + shlex.join([suite] + sys.argv[2:])
         __import__(suite).main(args)
 
 

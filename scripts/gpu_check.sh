@@ -20,7 +20,8 @@
 #   throughput  bench/run.py throughput --backend cuda --quick (two sizes of the
 #               bending column 3D and the oscillating plate 2D, double and float,
 #               one repeat): particle-steps/s per case, the time per stage and
-#               the host round trips per step (the runs' timing.json);
+#               the host round trips per step (the runs' timing.json); then the
+#               bending column with --pair-layout sliced (throughput_sliced.md);
 #   divergence  only when the tests fail: scripts/gpu_divergence.py, the step at
 #               which the backends part and the particle that differs most;
 #   report      scripts/gpu_report.py write.
@@ -79,7 +80,7 @@ mkdir -p "$out" || exit 1
 out=$(cd "$out" && pwd)
 for f in summary.txt phases.tsv meta.env nvidia_smi.txt nvidia_smi_query.csv nvidia_smi_list.txt mfsd_version.txt \
   nvcc_version.txt build_info.txt tests_planned.txt throughput_planned.tsv gpu_tests.xml gpu_tests.log \
-  throughput.log throughput.json throughput.md divergence.txt full_suite.log report.md report.json; do
+  throughput.log throughput.json throughput.md throughput_sliced.log throughput_sliced.json throughput_sliced.md divergence.txt full_suite.log report.md report.json; do
   rm -f "$out/$f"
 done
 rm -rf "${out:?}/throughput_timing" "${out:?}/divergence_runs" "${out:?}/bin"
@@ -259,6 +260,20 @@ mkdir -p "$out/throughput_timing"
 for f in "$root"/out/bench/throughput/*/timing.json; do
   [[ -e $f && $f -nt $marker ]] && cp "$f" "$out/throughput_timing/$(basename "$(dirname "$f")").json"
 done
+# The bending column again with the sliced pair layout (issue 24 item 3),
+# against the compressed rows above: out/throughput_sliced.md.
+: >"$marker"
+MFSD_BINARY="$mfsd" with_cap 120 python3 "$root/bench/run.py" throughput --backend cuda --quick --only "bending column" \
+  --mfsd-args "--pair-layout sliced" --tag sliced >"$out/throughput_sliced.log" 2>&1
+sliced=$(find "$root/bench/results" -maxdepth 1 -name 'throughput-*-sliced.json' -newer "$marker" 2>/dev/null | head -1)
+if [[ -n $sliced ]]; then
+  cp "$sliced" "$out/throughput_sliced.json"
+  cp "${sliced%.json}.md" "$out/throughput_sliced.md" 2>/dev/null
+  log "the bending column with --pair-layout sliced: $out/throughput_sliced.md"
+else
+  log "the sliced-layout throughput runs wrote no results (tail of $out/throughput_sliced.log:)"
+  tail -5 "$out/throughput_sliced.log" >&2
+fi
 rm -f "$marker"
 phase_end throughput "$bench_status" 1 "${latest:+${latest#"$root"/}}"
 

@@ -51,6 +51,8 @@ const char* kUsage =
     "                          scalar path the GPU takes\n"
     "  --pair-loop full|half   cpu: each pair from both its rows (full gather, as on the GPU) or once\n"
     "                          from the row of its smaller index (half, the default on cpu)\n"
+    "  --pair-layout csr|sliced  TLSPH full gather: compressed rows (default) or sliced rows, interleaved\n"
+    "                          32 at a time for coalesced GPU loads (implies --pair-loop full on cpu)\n"
     "  --checkpoint-every MIN  write a checkpoint every MIN minutes of wall time (also: output.checkpoint_interval)\n"
     "  --restart DIR           continue the run whose output (or checkpoint) folder is DIR, in that folder\n"
     "  -q, --quiet             no progress line and no summary\n"
@@ -101,7 +103,8 @@ int command_run(int argc, char** argv, const std::string& command_line) {
       "set", "", cxxopts::value<std::vector<std::string>>())("max-steps", "", cxxopts::value<long>())(
       "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>())(
       "restart", "", cxxopts::value<std::string>())("checkpoint-every", "", cxxopts::value<double>())(
-      "genog-record", "", cxxopts::value<std::string>())("pair-loop", "", cxxopts::value<std::string>());
+      "genog-record", "", cxxopts::value<std::string>())("pair-loop", "", cxxopts::value<std::string>())(
+      "pair-layout", "", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");
@@ -145,6 +148,16 @@ int command_run(int argc, char** argv, const std::string& command_line) {
     const std::string l = r["pair-loop"].as<std::string>();
     if (l != "full" && l != "half") throw UsageError("--pair-loop " + l + ": expected full or half");
     o.solver.pair_loop = l == "half" ? SolverOptions::PairLoop::half : SolverOptions::PairLoop::full;
+  }
+  if (r.count("pair-layout")) {
+    const std::string l = r["pair-layout"].as<std::string>();
+    if (l != "csr" && l != "sliced") throw UsageError("--pair-layout " + l + ": expected csr or sliced");
+    if (l == "sliced") {
+      if (o.solver.pair_loop == SolverOptions::PairLoop::half)
+        throw UsageError("--pair-layout sliced is a layout of the full gather; it cannot go with --pair-loop half");
+      o.solver.pair_layout = SolverOptions::PairLayout::sliced;
+      o.solver.pair_loop = SolverOptions::PairLoop::full;
+    }
   }
   if (r.count("checkpoint-every")) {
     o.checkpoint_every_minutes = r["checkpoint-every"].as<double>();

@@ -51,8 +51,8 @@ namespace {
 // CPU threads: the start's count and, when the governor chose it, every count it ran with.
 void put_threads(Json& j, const RunOptions& options, const RunStatus& status) {
   j["threads"] = options.solver.backend != "cpu" ? 0
-                 : status.threads > 0           ? status.threads
-                 : (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads());
+                 : status.threads > 0            ? status.threads
+                                      : (options.solver.threads > 0 ? options.solver.threads : omp_get_max_threads());
   if (status.governed) {
     Json changes = Json::array();
     for (const auto& [step, n] : status.thread_changes) changes.push_back(Json::array({step, n}));
@@ -98,6 +98,7 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
                     {"max", setup.max_neighbors}};
   j["regularized_correction_matrices"] = setup.regularized_corrections;
   j["pair_loop"] = setup.pair_loop;
+  j["pair_layout"] = setup.pair_layout;
   j["bytes_per_particle"] = setup.bytes_per_particle;
   j["machine"] = machine_description();
   j["status"] = status.state;

@@ -79,7 +79,8 @@ struct SetupReport {
   long min_neighbors = 0, max_neighbors = 0;
   long regularized_corrections = 0;  // B0 that needed the eigenvalue floor
   double bytes_per_particle = 0;
-  std::string pair_loop = "full";  // the strategy the pair stages ran (SolverOptions::pair_loop)
+  std::string pair_loop = "full";   // the strategy the pair stages ran (SolverOptions::pair_loop)
+  std::string pair_layout = "csr";  // how the full gather's pairs are stored (SolverOptions::pair_layout)
 };
 
 // A measure plane's particles: mean displacement [m] and total force
@@ -135,6 +136,14 @@ struct SolverOptions {
   // threads, where it is faster (docs/performance.md), full on the GPU.
   enum class PairLoop { automatic, full, half };
   PairLoop pair_loop = PairLoop::automatic;
+  // How the full gather's reference pairs are laid out (TLSPH): compressed
+  // rows, or sliced (sliced ELLPACK, slices of kSliceHeight rows interleaved
+  // so that a GPU warp's threads read adjacent pairs; issue 24 item 3). The
+  // sliced layout needs the full gather: on the CPU it implies
+  // pair_loop full. csr stays the default until a GPU has measured both
+  // (scripts/gpu_check.sh runs the sliced layout's cross-backend test).
+  enum class PairLayout { csr, sliced };
+  PairLayout pair_layout = PairLayout::csr;
 };
 
 // Factory: picks the instantiation for backend x precision x dimension.

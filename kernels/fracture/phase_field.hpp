@@ -65,8 +65,11 @@ template <int D, class Real>
 MFSD_HD inline Real phase_field_laplacian(const ReferencePairs<D, Real>& pairs, const Real* s, Index i) {
   const Real si = s[i];
   Real sum = Real(0);
-  for (PairIndex q = pairs.offsets[i]; q < pairs.offsets[i + 1]; ++q)
+  const PairRow r = pairs.row(i);
+  for (Index k = 0; k < r.count; ++k) {
+    const PairIndex q = r.at(k);
     sum += (si - s[pairs.neighbor[q]]) * pairs.stretch[q];
+  }
   return Real(2) * sum;
 }
 
@@ -117,7 +120,11 @@ MFSD_HD inline Real crack_surface_density(const ReferencePairs<D, Real>& pairs, 
                                           const FractureParameters<Real>& f, Index i) {
   Vec<D, Real> g = Vec<D, Real>::zero();
   const Real si = s[i];
-  for (PairIndex q = pairs.offsets[i]; q < pairs.offsets[i + 1]; ++q) g += pairs.grad[q] * (s[pairs.neighbor[q]] - si);
+  const PairRow r = pairs.row(i);
+  for (Index k = 0; k < r.count; ++k) {
+    const PairIndex q = r.at(k);
+    g += pairs.grad[q] * (s[pairs.neighbor[q]] - si);
+  }
   Vec<D, Real> grad_s;  // B0^T g = B0 g (B0 symmetric)
   grad_s = B0 * g;
   const Real one = Real(1) - si;

@@ -16,17 +16,37 @@
 namespace mfsd {
 
 // The pair loops prefetch the fields of the neighbour this many pairs ahead;
-// the neighbour array carries as many extra entries (index 0) at its end.
+// the neighbour array carries as many extra entries (index 0) at its end
+// (times the slice height in the sliced layout).
 constexpr int kPairPrefetchDistance = 16;
+
+// One row's pairs: the k-th is at first + k * stride. Compressed rows (CSR)
+// have stride 1; the sliced layout (sliced ELLPACK, issue 24 item 3) stores
+// the rows of a slice of `stride` consecutive particles interleaved, so that
+// the k-th pairs of the slice's rows are adjacent: on the GPU a warp whose
+// threads take consecutive rows reads them in one coalesced transaction.
+struct PairRow {
+  PairIndex first;
+  Index count;
+  Index stride;
+  MFSD_HD PairIndex at(Index k) const { return first + PairIndex(k) * stride; }
+};
 
 template <int D, class Real>
 struct PairList {
-  const PairIndex* offsets;  // size n + 1; pairs of i are [offsets[i], offsets[i+1])
+  const PairIndex* offsets;  // CSR: size n + 1, pairs of i are [offsets[i], offsets[i+1]); sliced: row i's first
   const Index* neighbor;
   const Vec<D, Real>* grad;
   const Real* stretch;
   const Vec<D, Real>* gradient_sum;  // per particle
   const Real* beta;                  // null unless a stage needs it
+  const Index* count = nullptr;      // sliced: each row's pair count; null for CSR
+  Index stride = 1;                  // sliced: the slice height
+
+  MFSD_HD PairRow row(Index i) const {
+    if (count) return PairRow{offsets[i], count[i], stride};
+    return PairRow{offsets[i], Index(offsets[i + 1] - offsets[i]), 1};
+  }
 };
 
 }  // namespace mfsd

@@ -95,10 +95,11 @@ struct AccelerationFunctor {
       Si = shear_stress[i];
       Finv_i = inverse_F[i];
     }
-    const PairIndex begin = pairs.offsets[i], end = pairs.offsets[i + 1];
-    for (PairIndex p = begin; p < end; ++p) {
+    const PairRow r = pairs.row(i);
+    for (Index k = 0; k < r.count; ++k) {
+      const PairIndex p = r.at(k);
       const Index j = pairs.neighbor[p];
-      const Index ahead = pairs.neighbor[p + kPairPrefetchDistance];
+      const Index ahead = pairs.neighbor[r.at(k + kPairPrefetchDistance)];
       prefetch(&force_stress[ahead]);
       if constexpr (laplacian || genog) prefetch(&displacement[ahead]);
       if constexpr (genog) prefetch(&inverse_F[ahead]);
@@ -131,13 +132,11 @@ struct AccelerationFunctor {
   }
 
  private:
-
   // First pass on scalars: sum_j Q_j g_ij into s, and whether some pair may
   // have phi_ij > 0 (the test of GenogActivePairs, a little looser than the
   // second pass's); with a record (host), which pairs.
-  MFSD_HD bool genog_first_pass(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
-                                Real& s0_out, Real& s1_out, Real& s2_out,
-                                GenogActivePairs<Real>* record = nullptr) const {
+  MFSD_HD bool genog_first_pass(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, const PairRow& row, Real& s0_out,
+                                Real& s1_out, Real& s2_out, GenogActivePairs<Real>* record = nullptr) const {
     const Real* Q = &force_stress[0].m[0][0];
     const Real* Fv = &inverse_F[0].m[0][0];
     const Real* U = &displacement[0].v[0];
@@ -151,10 +150,11 @@ struct AccelerationFunctor {
     const Real thr2 = GenogActivePairs<Real>::loose_threshold2;  // the second pass tests 0.05^2
     Real s0 = Real(0), s1 = Real(0), s2 = Real(0);
     bool active = false;
-    for (PairIndex p = begin; p < end; ++p) {
+    for (Index n = 0; n < row.count; ++n) {
+      const PairIndex p = row.at(n);
       const PairIndex j9 = PairIndex(J[p]) * 9, j3 = PairIndex(J[p]) * 3;
       {  // the neighbour kPairPrefetchDistance pairs ahead: 72-byte matrices span two lines
-        const PairIndex ahead = PairIndex(J[p + kPairPrefetchDistance]);
+        const PairIndex ahead = PairIndex(J[row.at(n + kPairPrefetchDistance)]);
         prefetch(Q + ahead * 9);
         prefetch(Q + ahead * 9 + 8);
         prefetch(Fv + ahead * 9);
@@ -172,7 +172,7 @@ struct AccelerationFunctor {
       const Real h2 = Real(0.5) * ((f20 + Fv[j9 + 6]) * t0 + (f21 + Fv[j9 + 7]) * t1 + (f22 + Fv[j9 + 8]) * t2) - g2;
       const Real excess = h0 * h0 + h1 * h1 + h2 * h2 - thr2 * (g0 * g0 + g1 * g1 + g2 * g2);
       active |= excess > Real(0);
-      if (record) record->put(p - begin, excess);
+      if (record) record->put(n, excess);
     }
     s0_out = s0;
     s1_out = s1;
@@ -184,8 +184,8 @@ struct AccelerationFunctor {
   // The same first pass on 4-wide vectors (GCC vector extensions; the
   // compiler maps them to SSE/AVX registers), reading the packed neighbour
   // record: Q_j g and (F_i^{-1} + F_j^{-1}) t are three vector FMAs each.
-  bool genog_first_pass_packed(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, PairIndex begin, PairIndex end,
-                               Real& s0_out, Real& s1_out, Real& s2_out, GenogActivePairs<Real>& record) const {
+  bool genog_first_pass_packed(const Mat<D, Real>& Fi, const Vec<D, Real>& ui, const PairRow& row, Real& s0_out,
+                               Real& s1_out, Real& s2_out, GenogActivePairs<Real>& record) const {
     typedef Real V4 __attribute__((vector_size(4 * sizeof(Real))));
     auto load = [](const Real* p) {
       V4 v;
@@ -203,10 +203,11 @@ struct AccelerationFunctor {
     const GenogNeighborRecord<Real>* R = neighbor_record;
     V4 acc = {Real(0), Real(0), Real(0), Real(0)};
     bool active = false;
-    for (PairIndex p = begin; p < end; ++p) {
+    for (Index n = 0; n < row.count; ++n) {
+      const PairIndex p = row.at(n);
       const GenogNeighborRecord<Real>& r = R[J[p]];
       {  // the record kPairPrefetchDistance pairs ahead (224 bytes in double)
-        const char* ahead = reinterpret_cast<const char*>(R + J[p + kPairPrefetchDistance]);
+        const char* ahead = reinterpret_cast<const char*>(R + J[row.at(n + kPairPrefetchDistance)]);
         for (unsigned off = 0; off < sizeof(GenogNeighborRecord<Real>); off += 64) prefetch(ahead + off);
       }
       const Real g0 = G[3 * p], g1 = G[3 * p + 1], g2 = G[3 * p + 2], k = K[p];
@@ -218,7 +219,7 @@ struct AccelerationFunctor {
       const V4 d = h * h - g * g * thr2;
       const Real excess = d[0] + d[1] + d[2];
       active |= excess > Real(0);
-      record.put(p - begin, excess);
+      record.put(n, excess);
     }
     s0_out = acc[0];
     s1_out = acc[1];
@@ -258,17 +259,17 @@ struct AccelerationFunctor {
   MFSD_HD void genog_particle_3d(Index i) const {
     const Mat<D, Real> Fi = neighbor_record ? neighbor_record[i].F_inv() : inverse_F[i];
     const Vec<D, Real> ui = displacement[i];
-    const PairIndex begin = pairs.offsets[i], end = pairs.offsets[i + 1];
+    const PairRow row = pairs.row(i);
     Real s0, s1, s2;
     bool active;
 #if !defined(__CUDACC__)
     GenogActivePairs<Real> record;
     if (neighbor_record)
-      active = genog_first_pass_packed(Fi, ui, begin, end, s0, s1, s2, record);
+      active = genog_first_pass_packed(Fi, ui, row, s0, s1, s2, record);
     else
-      active = genog_first_pass(Fi, ui, begin, end, s0, s1, s2, &record);
+      active = genog_first_pass(Fi, ui, row, s0, s1, s2, &record);
 #else
-    active = genog_first_pass(Fi, ui, begin, end, s0, s1, s2);
+    active = genog_first_pass(Fi, ui, row, s0, s1, s2);
 #endif
     Vec<D, Real> sum;
     sum.v[0] = s0;
@@ -277,11 +278,11 @@ struct AccelerationFunctor {
     if (active) {
       const Mat<D, Real> Si = shear_stress[i];
 #if !defined(__CUDACC__)
-      if (!record.overflowed(end - begin))
-        record.for_each(end - begin, [&](PairIndex k) { genog_correction(begin + k, Fi, ui, Si, sum); });
+      if (!record.overflowed(row.count))
+        record.for_each(row.count, [&](PairIndex k) { genog_correction(row.at(Index(k)), Fi, ui, Si, sum); });
       else
 #endif
-        for (PairIndex p = begin; p < end; ++p) genog_correction(p, Fi, ui, Si, sum);
+        for (Index k = 0; k < row.count; ++k) genog_correction(row.at(k), Fi, ui, Si, sum);
     }
     finish(i, neighbor_record ? neighbor_record[i].Q() : force_stress[i], sum);
   }

@@ -44,7 +44,9 @@ struct CorrectionMatrixFunctor {
 
   MFSD_HD void operator()(Index i) const {
     Mat<D, Real> A = Mat<D, Real>::zero();
-    for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
+    const PairRow r = pairs.row(i);
+    for (Index k = 0; k < r.count; ++k) {
+      const PairIndex p = r.at(k);
       const Vec<D, Real> g = pairs.grad[p];
       if (pairs.stretch[p] == Real(0)) continue;   // dW = 0 at the support edge
       const Real w = -Real(1) / pairs.stretch[p];  // r0 / (V0_j |dW|)

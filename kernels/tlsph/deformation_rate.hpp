@@ -4,8 +4,8 @@
 // Exact for linear velocity fields (v = L X gives dF/dt = L).
 #pragma once
 #include "kernels/core/mat.hpp"
-#include "kernels/tlsph/reference_pairs.hpp"
 #include "kernels/core/step_statistics.hpp"
+#include "kernels/tlsph/reference_pairs.hpp"
 
 namespace mfsd {
 
@@ -13,8 +13,10 @@ template <int D, class Real>
 MFSD_HD inline Mat<D, Real> deformation_rate(const ReferencePairs<D, Real>& pairs, const Vec<D, Real>* velocity,
                                              const Mat<D, Real>& B0, Index i) {
   Mat<D, Real> sum = Mat<D, Real>::zero();
-  for (PairIndex p = pairs.offsets[i]; p < pairs.offsets[i + 1]; ++p) {
-    prefetch(&velocity[pairs.neighbor[p + kPairPrefetchDistance]]);
+  const PairRow r = pairs.row(i);
+  for (Index k = 0; k < r.count; ++k) {
+    const PairIndex p = r.at(k);
+    prefetch(&velocity[pairs.neighbor[r.at(k + kPairPrefetchDistance)]]);
     const Vec<D, Real> vj = velocity[pairs.neighbor[p]];
     const Vec<D, Real> g = pairs.grad[p];
     for (int a = 0; a < D; ++a)

@@ -40,12 +40,13 @@ struct HourglassIndicatorFunctor {
   Real* indicator;
 
   MFSD_HD void operator()(Index i) const {
-    const PairIndex begin = pairs.offsets[i], end = pairs.offsets[i + 1];
+    const PairRow r = pairs.row(i);
     const Vec<D, Real> ui = displacement[i];
     const Mat<D, Real> Fi_inv = inverse_F[i];
     Real sum = Real(0);
     Index count = 0;
-    for (PairIndex p = begin; p < end; ++p) {
+    for (Index k = 0; k < r.count; ++k) {
+      const PairIndex p = r.at(k);
       const Index j = pairs.neighbor[p];
       const Vec<D, Real> g = pairs.grad[p];
       const Real g2 = squared_norm(g);

@@ -90,9 +90,9 @@ struct RelaxationSweepFunctor {
     for (Index q = 0; q < end - begin; ++q) {
       const Index i = item_particle[forward ? begin + q : end - 1 - q];
       const Real mi = rho * volume[i];
-      const PairIndex p0 = pairs.offsets[i], p1 = pairs.offsets[i + 1];
-      for (PairIndex s = 0; s < p1 - p0; ++s) {
-        const PairIndex p = forward ? p0 + s : p1 - 1 - s;
+      const PairRow r = pairs.row(i);
+      for (Index s = 0; s < r.count; ++s) {
+        const PairIndex p = r.at(forward ? s : r.count - 1 - s);
         const Index j = pairs.neighbor[p];
         if (j <= i) continue;  // each pair once, from its lower index
         // stretch_ij = V0_j dW/dr / r0 <= 0 (reference_pairs.hpp)

@@ -59,20 +59,24 @@ struct Result {
   Snapshot snapshot;
   std::string pair_loop;
   double bytes_per_particle;
+  std::string pair_layout;
 };
 
-Result run(const Case& c, SolverOptions::PairLoop loop, int threads, long steps) {
+Result run(const Case& c, SolverOptions::PairLoop loop, int threads, long steps,
+           SolverOptions::PairLayout layout = SolverOptions::PairLayout::csr) {
   const SceneDocument doc = load_scene_file(std::string(MFSD_SOURCE_DIR) + "/" + c.config, c.sets);
   const InitialParticles particles = generate_particles(doc.scene);
   SolverOptions o;
   o.packed_genog_record = c.packed;
   o.pair_loop = loop;
+  o.pair_layout = layout;
   o.precision = c.precision;
   o.threads = threads;
   auto solver = make_solver(doc.scene, particles, o);
   solver->initialize();
   for (long s = 0; s < steps; ++s) solver->step();
-  return {solver->snapshot(), solver->setup_report().pair_loop, solver->setup_report().bytes_per_particle};
+  return {solver->snapshot(), solver->setup_report().pair_loop, solver->setup_report().bytes_per_particle,
+          solver->setup_report().pair_layout};
 }
 
 }  // namespace
@@ -145,4 +149,33 @@ TEST(PairLoops, HalfLoopReleasesTheFullRows) {
   const Case f{"configs/crack_branching_2d.json", {"constants.dp=1e-3", "constants.eps0=1e-3"}};
   EXPECT_GT(run(f, SolverOptions::PairLoop::half, 2, 1).bytes_per_particle,
             run(f, SolverOptions::PairLoop::full, 1, 1).bytes_per_particle);
+}
+
+// The sliced layout of the full gather (issue 24 item 3, what a GPU warp reads
+// coalesced): each row's pairs in the same order as the compressed rows, so
+// every field is the same bit for bit, on every case above and with the
+// relaxation (whose sweep reads rows forwards and backwards). On the CPU
+// backend; scripts/gpu_check.sh runs the same comparison across backends.
+TEST(PairLoops, SlicedLayoutGivesTheCompressedRowsResultsBitForBit) {
+  std::vector<Case> cases = kCases;
+  cases.push_back({"tests/regression/scenes/hanging_column_2d.json", {}});
+  for (const Case& c : cases) {
+    const Result csr = run(c, SolverOptions::PairLoop::full, 2, 20);
+    const Result sliced = run(c, SolverOptions::PairLoop::full, 2, 20, SolverOptions::PairLayout::sliced);
+    const std::string name = c.config + (c.sets.empty() ? "" : " " + c.sets.back()) + (c.packed ? "" : " scalar") +
+                             (c.precision == Precision::single_precision ? " float" : "");
+    EXPECT_EQ(csr.pair_layout, "csr") << name;
+    EXPECT_EQ(sliced.pair_layout, "sliced") << name;
+    EXPECT_EQ(sliced.pair_loop, "full") << name;
+    ASSERT_EQ(csr.snapshot.id, sliced.snapshot.id) << name;
+    EXPECT_TRUE(csr.snapshot.displacement == sliced.snapshot.displacement) << name;
+    EXPECT_TRUE(csr.snapshot.velocity == sliced.snapshot.velocity) << name;
+    EXPECT_TRUE(*csr.snapshot.field("hourglass") == *sliced.snapshot.field("hourglass")) << name;
+    EXPECT_GT(relative_difference(csr.snapshot.velocity, std::vector<double>(csr.snapshot.velocity.size(), 0.0)), 0)
+        << name;
+    // The padding of slices 32 rows high: more bytes, never fewer.
+    EXPECT_GE(sliced.bytes_per_particle, csr.bytes_per_particle) << name;
+    std::printf("%-70s bytes per particle: compressed %.0f, sliced %.0f\n", name.c_str(), csr.bytes_per_particle,
+                sliced.bytes_per_particle);
+  }
 }

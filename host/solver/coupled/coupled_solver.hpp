@@ -257,6 +257,7 @@ class CoupledSolver : public Solver {
       r.max_neighbors = std::max(r.max_neighbors, s.max_neighbors);
       r.regularized_corrections += s.regularized_corrections;
       if (s.pair_loop != "full") r.pair_loop = s.pair_loop;
+      if (s.pair_layout != "csr") r.pair_layout = s.pair_layout;
       bytes += s.bytes_per_particle * double(s.particles);
     }
     r.mean_neighbors = r.particles ? double(r.pairs) / double(r.particles) : 0;

@@ -13,6 +13,7 @@
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
+#include "kernels/neighbors/sliced_pairs.hpp"
 #include "kernels/tlsph/reference_pair_fill.hpp"
 
 namespace mfsd {
@@ -38,6 +39,12 @@ struct ReferenceNeighborList {
 
   PairIndex total_pairs = 0;  // of the full list (kept when its rows are released)
   bool full_rows = true;      // false after release_full_rows()
+  // The sliced layout of the full rows (make_sliced_layout, issue 24 item 3):
+  // per row its first pair and count; neighbor, grad, stretch and beta then
+  // hold the sliced order, `offsets` still the compressed rows' counts.
+  DeviceVector<B, PairIndex> sliced_first;
+  DeviceVector<B, Index> sliced_count;
+  Index slice_height = 0;  // 0: compressed rows
 
   PairIndex pairs() const { return total_pairs; }
 
@@ -57,6 +64,15 @@ struct ReferenceNeighborList {
                                    raw(half_stretch), raw(gradient_sum),  half_beta.empty() ? nullptr : raw(half_beta)};
   }
 
+  // Of the full rows as stored (compressed or sliced, with the padding), and
+  // the per-particle offsets and gradient sums.
+  double full_bytes() const {
+    return double(grad.size()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
+           double(beta.size()) * sizeof(Real) + double(offsets.size()) * sizeof(PairIndex) +
+           double(gradient_sum.size()) * sizeof(Vec<D, Real>) + double(sliced_first.size()) * sizeof(PairIndex) +
+           double(sliced_count.size()) * sizeof(Index);
+  }
+
   double half_bytes() const {
     return double(half_grad.size()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
            double(half_beta.size()) * sizeof(Real) + double(half_offsets.size()) * sizeof(PairIndex);
@@ -64,8 +80,14 @@ struct ReferenceNeighborList {
 
   ReferencePairs<D, Real> view() const {
     if (!full_rows) return ReferencePairs<D, Real>{raw(offsets), nullptr, nullptr, nullptr, raw(gradient_sum), nullptr};
-    return ReferencePairs<D, Real>{raw(offsets), raw(neighbor),     raw(grad),
-                                   raw(stretch), raw(gradient_sum), beta.empty() ? nullptr : raw(beta)};
+    ReferencePairs<D, Real> v{raw(offsets), raw(neighbor),     raw(grad),
+                              raw(stretch), raw(gradient_sum), beta.empty() ? nullptr : raw(beta)};
+    if (slice_height > 0) {
+      v.offsets = raw(sliced_first);
+      v.count = raw(sliced_count);
+      v.stride = slice_height;
+    }
+    return v;
   }
 };
 
@@ -121,6 +143,37 @@ bool build_half_pair_list(ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
   }
   list.bandwidth = bandwidth;
   return true;
+}
+
+// The full rows of `list` in the sliced layout (kernels/neighbors/sliced_pairs.hpp)
+// with slices of `height` rows, in place of the compressed ones; any backend.
+// Returns the padding: stored entries / pairs.
+template <class B, int D, class Real>
+double make_sliced_layout(ReferenceNeighborList<B, D, Real>& list, Index n, Index height) {
+  if (!list.full_rows || list.slice_height > 0 || height < 1)
+    throw std::logic_error("the sliced layout needs compressed full rows and a positive height");
+  const Index slices = (n + height - 1) / height;
+  DeviceVector<B, PairIndex> size(static_cast<size_t>(slices)), start(static_cast<size_t>(slices));
+  parallel_for<B>(slices, SliceSizeFunctor{raw(list.offsets), n, height, raw(size)});
+  const PairIndex total = exclusive_scan<B, PairIndex, PairIndex>(size, start);
+  list.sliced_first.resize(static_cast<size_t>(n));
+  list.sliced_count.resize(static_cast<size_t>(n));
+  parallel_for<B>(
+      n, SlicedRowFunctor{raw(list.offsets), raw(start), height, raw(list.sliced_first), raw(list.sliced_count)});
+  // Padded with zeros: the prefetch reads kPairPrefetchDistance pairs ahead.
+  DeviceVector<B, Index> neighbor(size_t(total) + size_t(kPairPrefetchDistance) * size_t(height), 0);
+  DeviceVector<B, Vec<D, Real>> grad(size_t(total), Vec<D, Real>::zero());
+  DeviceVector<B, Real> stretch(size_t(total), Real(0)), beta(list.beta.empty() ? 0 : size_t(total), Real(0));
+  parallel_for<B>(n, SlicedScatterFunctor<D, Real>{raw(list.offsets), raw(list.sliced_first), height,
+                                                   raw(list.neighbor), raw(list.grad), raw(list.stretch),
+                                                   list.beta.empty() ? nullptr : raw(list.beta), raw(neighbor),
+                                                   raw(grad), raw(stretch), list.beta.empty() ? nullptr : raw(beta)});
+  list.neighbor.swap(neighbor);
+  list.grad.swap(grad);
+  list.stretch.swap(stretch);
+  list.beta.swap(beta);
+  list.slice_height = height;
+  return list.total_pairs > 0 ? double(total) / double(list.total_pairs) : 1.0;
 }
 
 // The largest j - i of the half-pair list's pairs (its bandwidth), CPU.

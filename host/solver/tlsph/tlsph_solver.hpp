@@ -135,7 +135,9 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     // it (no relaxation and no phase field, whose passes read full rows), its
     // list is filled straight from the search and the full rows never exist;
     // otherwise it is derived from the full list.
-    const bool half_loop = std::is_same<B, Cpu>::value && options_.pair_loop != SolverOptions::PairLoop::full;
+    const bool sliced = options_.pair_layout == SolverOptions::PairLayout::sliced;  // a full-gather layout
+    const bool half_loop =
+        std::is_same<B, Cpu>::value && options_.pair_loop != SolverOptions::PairLoop::full && !sliced;
     const bool half_only = half_loop && scene_.solver.reorder && !scene_.solver.relaxation.enabled && !has_fracture_;
     particles_.template add<Mat<D, Real>>(field::correction_matrix);  // the moment matrices, then B0
     pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter,
@@ -270,16 +272,16 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       pairs_.release_full_rows();
       bind_views();
     }
+    // The per-step passes' full rows in the sliced layout (issue 24 item 3):
+    // the same sums in the same order, read coalesced on the GPU.
+    if (sliced) {
+      make_sliced_layout(pairs_, n, kSliceHeight);
+      report_.pair_layout = "sliced";
+      bind_views();
+    }
 
     // Set-up report.
-    const double full_rows = !pairs_.full_rows
-                                 ? 0.0
-                                 : double(pairs_.pairs()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real) +
-                                                             (paper_limiter ? sizeof(Real) : 0));
-    const double pair_bytes = full_rows +
-                              double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)) +  // offsets, gradient sum
-                              pairs_.half_bytes();
-    this->report_particles_and_pairs(to_host<B>(pairs_.offsets), pair_bytes);
+    this->report_particles_and_pairs(to_host<B>(pairs_.offsets), pairs_.full_bytes() + pairs_.half_bytes());
   }
 
   void begin_step() override {
