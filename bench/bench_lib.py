@@ -31,9 +31,10 @@ EXTRA_ARGS = []
 RESULT_TAG = ""
 
 
-def run(config, sets, outdir, threads=None, precision=None, backend="cpu", max_steps=None, warmup=0):
+def run(config, sets, outdir, threads=None, precision=None, backend="cpu", max_steps=None, warmup=0, extra=()):
     """One mfsd run; returns (timing.json, run.json, peak resident memory in bytes)."""
     cmd = [m.BINARY, "run", os.path.join(ROOT, config), "-o", outdir, "-q", "--backend", backend] + EXTRA_ARGS
+    cmd += list(extra)
     for k, v in sets.items():
         cmd += ["--set", f"{k}={v}"]
     if threads and backend == "cpu":

@@ -32,7 +32,8 @@ def main():
     p.add_argument("--backend", default="cpu", choices=["cpu", "cuda"])
     p.add_argument("--quick", action="store_true", help="smaller cases and one repeat (a smoke run)")
     p.add_argument("--repeats", type=int, default=0, help="repeats per configuration (default 3, quick 1)")
-    p.add_argument("--only", default="", help="throughput: only the cases whose label contains this text")
+    p.add_argument("--only", default="",
+                   help="throughput: only the cases whose label contains this text; accuracy: only those hourglass variants")
     p.add_argument("--mfsd-args", default="", help="extra options for every mfsd run, e.g. \"--pair-layout sliced\"")
     p.add_argument("--tag", default="", help="appended to the results' file names (<suite>-<date>-<tag>)")
     args = p.parse_args()

@@ -1,5 +1,6 @@
 """Suite `accuracy`: speed against error. For each hourglass variant,
-resolution and precision:
+resolution and precision (double, float, and on the CPU a double run with
+float reference pair data, --pair-precision float):
   - oscillating plate 2D (nu = 0.3, v_f = 0.05, two periods): error of the
     period against seed 000 Table 1 (0.28201 s at H/dp = 40) and against the
     thin-plate theory (0.26412 s, seed 000 eq. 42);
@@ -14,17 +15,31 @@ import bench_lib as b
 
 T_SEED, T_THEORY = 0.28201, 0.26412
 VARIANTS = ["genog", "laplacian", "none"]
+# (label, --precision, extra options): double, float, and a double run with
+# its reference pairs' data in float (issue 24 item 4; CPU half-pair loop).
+PRECISIONS = [("double", "double", ()), ("float", "float", ()),
+              ("double, float pairs", "double", ("--pair-precision", "float"))]
+
+
+def variants(args):
+    """The hourglass variants to run (bench/run.py --only filters them)."""
+    return [hg for hg in VARIANTS if not args.only or args.only in hg]
+
+
+def precisions(args):
+    return [p for p in PRECISIONS if args.backend == "cpu" or not p[2]]
 
 
 def plate(args, threads):
     rows = []
     for res in ((10, 20) if args.quick else (10, 20, 40)):
-        for hg in VARIANTS:
-            for precision in ("double", "float"):
-                out = os.path.join(b.OUT, "accuracy", f"plate_{hg}_{res}_{precision}")
+        for hg in variants(args):
+            for precision, run_precision, extra in precisions(args):
+                out = os.path.join(b.OUT, "accuracy", f"plate_{hg}_{res}_{precision.replace(', ', '_').replace(' ', '_')}")
                 sets = {"constants.H_over_dp": res, "solver.hourglass": hg, "solver.end_time": 0.62,
                         "output.vtu": "false", "output.interval": 1.0}
-                timing, _, _ = b.run(b.PLATE, sets, out, threads=threads, precision=precision, backend=args.backend)
+                timing, _, _ = b.run(b.PLATE, sets, out, threads=threads, precision=run_precision,
+                                     backend=args.backend, extra=extra)
                 p = b.m.read_csv(os.path.join(out, "probes.csv"))
                 T = b.m.period(p["time"], p["tip.position.y"])
                 rows.append({"case": "oscillating plate", "hourglass": hg, "H_over_dp": res, "precision": precision,
@@ -50,11 +65,12 @@ def bending(args, threads):
     scale = np.max(np.linalg.norm(xr - xr[:, :1], axis=0))
     rows = []
     for res in ((4, 6) if args.quick else (4, 6, 8)):
-        for hg in VARIANTS:
-            for precision in ("double", "float"):
-                out = os.path.join(b.OUT, "accuracy", f"bending_{hg}_{res}_{precision}")
+        for hg in variants(args):
+            for precision, run_precision, extra in precisions(args):
+                out = os.path.join(b.OUT, "accuracy",
+                                   f"bending_{hg}_{res}_{precision.replace(', ', '_').replace(' ', '_')}")
                 timing, _, _ = b.run(b.BENDING, {**base, "constants.H_over_dp": res, "solver.hourglass": hg}, out,
-                                     threads=threads, precision=precision, backend=args.backend)
+                                     threads=threads, precision=run_precision, backend=args.backend, extra=extra)
                 t, x = trajectory(out)
                 x_ref = np.array([np.interp(t, tr, xr[c]) for c in range(3)])
                 err = float(np.sqrt(np.mean(np.sum((np.array(x) - x_ref) ** 2, axis=0))) / scale)
@@ -103,7 +119,7 @@ def plot(prow, brow, path):
     for ax, rows, key, title in ((axes[0], prow, "error_vs_seed", "oscillating plate: period error vs seed 000"),
                                  (axes[1], brow, "trajectory_error", "bending column: trajectory error vs finest")):
         for hg in VARIANTS:
-            for precision, fill in (("double", "full"), ("float", "none")):
+            for precision, fill in (("double", "full"), ("float", "none"), ("double, float pairs", "left")):
                 rs = [r for r in rows if r["hourglass"] == hg and r["precision"] == precision]
                 ax.loglog([r["wall_seconds_per_simulated_second"] for r in rs], [100 * max(r[key], 1e-6) for r in rs],
                           markers[hg], fillstyle=fill, color={"genog": "C0", "laplacian": "C1", "none": "C2"}[hg],

@@ -53,6 +53,8 @@ const char* kUsage =
     "                          from the row of its smaller index (half, the default on cpu)\n"
     "  --pair-layout csr|sliced  TLSPH full gather: compressed rows (default) or sliced rows, interleaved\n"
     "                          32 at a time for coalesced GPU loads (implies --pair-loop full on cpu)\n"
+    "  --pair-precision float  a double run with its reference pairs' data in float (the cpu half-pair\n"
+    "                          loop's list; a third less memory; docs/performance.md)\n"
     "  --checkpoint-every MIN  write a checkpoint every MIN minutes of wall time (also: output.checkpoint_interval)\n"
     "  --restart DIR           continue the run whose output (or checkpoint) folder is DIR, in that folder\n"
     "  -q, --quiet             no progress line and no summary\n"
@@ -104,7 +106,7 @@ int command_run(int argc, char** argv, const std::string& command_line) {
       "warmup-steps", "", cxxopts::value<long>())("q,quiet", "")("scene", "", cxxopts::value<std::string>())(
       "restart", "", cxxopts::value<std::string>())("checkpoint-every", "", cxxopts::value<double>())(
       "genog-record", "", cxxopts::value<std::string>())("pair-loop", "", cxxopts::value<std::string>())(
-      "pair-layout", "", cxxopts::value<std::string>());
+      "pair-layout", "", cxxopts::value<std::string>())("pair-precision", "", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (r.unmatched().size()) throw UsageError("mfsd run: unexpected argument '" + r.unmatched()[0] + "'");
@@ -158,6 +160,13 @@ int command_run(int argc, char** argv, const std::string& command_line) {
       o.solver.pair_layout = SolverOptions::PairLayout::sliced;
       o.solver.pair_loop = SolverOptions::PairLoop::full;
     }
+  }
+  if (r.count("pair-precision")) {
+    const std::string p = r["pair-precision"].as<std::string>();
+    if (p != "float" && p != "double") throw UsageError("--pair-precision " + p + ": expected float or double");
+    if (p == "double" && o.solver.precision == Precision::single_precision)
+      throw UsageError("--pair-precision double: a float run keeps its pair data in float");
+    if (p == "float") o.solver.pair_precision = SolverOptions::PairPrecision::single;
   }
   if (r.count("checkpoint-every")) {
     o.checkpoint_every_minutes = r["checkpoint-every"].as<double>();

@@ -99,6 +99,7 @@ void write_run_json(const std::string& dir, const SceneDocument& doc, const RunO
   j["regularized_correction_matrices"] = setup.regularized_corrections;
   j["pair_loop"] = setup.pair_loop;
   j["pair_layout"] = setup.pair_layout;
+  if (!setup.pair_precision.empty()) j["pair_precision"] = setup.pair_precision;
   j["bytes_per_particle"] = setup.bytes_per_particle;
   j["machine"] = machine_description();
   j["status"] = status.state;

@@ -69,9 +69,11 @@ BodyBytes body_bytes(const Scene& scene, size_t b, const SolverOptions& o) {
     fields += 8 + vec;                                                       // offsets, gradient sum
     if (cpu && o.pair_loop != SolverOptions::PairLoop::full && s.reorder) {  // the half-pair loop
       fields += 8;                                                           // the half list's offsets
-      if (!s.relaxation.enabled && !fracture)
+      if (!s.relaxation.enabled && !fracture) {
         stored = e.neighbors / 2;  // the half list alone, filled from the search
-      else
+        if (o.pair_precision == SolverOptions::PairPrecision::single)
+          pair = 4 + D * 4.0 + 4 + (genog && s.genog_limiter == GenogLimiterChoice::paper ? 4 : 0);  // in float
+      } else
         stored = 1.5 * e.neighbors;  // both lists
     }
   }

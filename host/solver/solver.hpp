@@ -81,6 +81,7 @@ struct SetupReport {
   double bytes_per_particle = 0;
   std::string pair_loop = "full";   // the strategy the pair stages ran (SolverOptions::pair_loop)
   std::string pair_layout = "csr";  // how the full gather's pairs are stored (SolverOptions::pair_layout)
+  std::string pair_precision;       // of the reference pairs' data: "double" or "float" (TLSPH)
 };
 
 // A measure plane's particles: mean displacement [m] and total force
@@ -144,6 +145,11 @@ struct SolverOptions {
   // (scripts/gpu_check.sh runs the sliced layout's cross-backend test).
   enum class PairLayout { csr, sliced };
   PairLayout pair_layout = PairLayout::csr;
+  // The reference pairs' data (g, stretch) in the run's precision, or in
+  // float within a double run (issue 24 item 4: a third less memory per pair;
+  // the CPU half-pair loop's list alone; docs/performance.md).
+  enum class PairPrecision { same, single };
+  PairPrecision pair_precision = PairPrecision::same;
 };
 
 // Factory: picks the instantiation for backend x precision x dimension.

@@ -15,10 +15,12 @@
 
 namespace mfsd {
 
-template <int D, class Real, class Hourglass>
+// P: how the half list stores its pair data (Real, or float in a double run:
+// --pair-precision float, issue 24 item 4); the arithmetic is in Real.
+template <int D, class Real, class Hourglass, class P = Real>
 struct AccelerationHalfFunctor {
   AccelerationFunctor<D, Real, Hourglass> f;  // fields and the finish (f.pairs: the full list, for G_i)
-  ReferencePairs<D, Real> half;               // each row's pairs with j > i (reference_neighbor_list.hpp)
+  ReferencePairs<D, P> half;                  // each row's pairs with j > i (reference_neighbor_list.hpp)
   const Real* volume;                         // V0
 
   using Acc = Vec<D, Real>;
@@ -54,7 +56,7 @@ struct AccelerationHalfFunctor {
 
  private:
   MFSD_HD void row(Index i, const HalfPairSink<Acc>& sink) const {
-    const ReferencePairs<D, Real>& pairs = half;
+    const ReferencePairs<D, P>& pairs = half;
     const Real Vi = volume[i];
     const Mat<D, Real> Qi = Q(i);
     [[maybe_unused]] Vec<D, Real> ui;
@@ -85,20 +87,21 @@ struct AccelerationHalfFunctor {
         }
         prefetch(&sink.acc[ahead < sink.hi ? ahead : i]);
       }
-      const Vec<D, Real> g = pairs.grad[p];
+      const Vec<D, Real> g = cast<Real>(pairs.grad[p]);
+      const Real stretch = Real(pairs.stretch[p]);
       Vec<D, Real> own = Q(j) * g;  // eq. 20: Q_j g_ij for i
       Vec<D, Real> other = Qi * g;  // and Q_i g_ij for j
       if constexpr (laplacian) {
-        const Vec<D, Real> t = g + (ui - f.displacement[j]) * pairs.stretch[p];
+        const Vec<D, Real> t = g + (ui - f.displacement[j]) * stretch;
         const Vec<D, Real> c = t * (si + f.shear_coefficient[j]);  // seed 003 eq. 27
         own += c;
         other += c;
       }
       if constexpr (genog) {
-        const Vec<D, Real> h = scaled_e_hat(Fi, F_inv(j), ui, f.displacement[j], g, pairs.stretch[p]);  // eq. 31
+        const Vec<D, Real> h = scaled_e_hat(Fi, F_inv(j), ui, f.displacement[j], g, stretch);  // eq. 31
         const Real h2 = squared_norm(h), g2 = squared_norm(g);
         if (h2 > thr2 * g2) {
-          const Real phi = f.genog_weight(math::sqrt(h2 / g2), pairs.beta ? pairs.beta[p] : Real(0));
+          const Real phi = f.genog_weight(math::sqrt(h2 / g2), pairs.beta ? Real(pairs.beta[p]) : Real(0));
           const Vec<D, Real> c = (Si + f.shear_stress[j]) * f.genog_weight.correction(g, h, phi, g2);  // eq. 32
           own += c;
           other += c;
@@ -122,7 +125,7 @@ struct AccelerationHalfFunctor {
       __builtin_memcpy(&v, p, sizeof v);
       return v;
     };
-    const ReferencePairs<D, Real>& pairs = half;
+    const ReferencePairs<D, P>& pairs = half;
     const GenogNeighborRecord<Real>* R = f.neighbor_record;
     const GenogNeighborRecord<Real>& ri = R[i];
     const V4 qi0 = load(ri.q[0]), qi1 = load(ri.q[1]), qi2 = load(ri.q[2]);
@@ -130,8 +133,8 @@ struct AccelerationHalfFunctor {
     const V4 u_i = load(ri.u);
     const Real Vi = volume[i];
     constexpr Real thr2 = GenogWeight<Real>::threshold * GenogWeight<Real>::threshold;
-    const Real* G = &pairs.grad[0].v[0];
-    const Real* K = pairs.stretch;
+    const P* G = &pairs.grad[0].v[0];
+    const P* K = pairs.stretch;
     const Index* J = pairs.neighbor;
     V4 own = {Real(0), Real(0), Real(0), Real(0)};
     const PairIndex end = pairs.offsets[i + 1];
@@ -155,7 +158,7 @@ struct AccelerationHalfFunctor {
       if (d[0] + d[1] + d[2] > Real(0)) {  // phi_ij > 0: eq. 32's phi e_hat part
         const Vec<D, Real> gv{{g0, g1, g2}}, hv{{h[0], h[1], h[2]}};
         const Real h2v = squared_norm(hv), g2v = squared_norm(gv);
-        const Real phi = f.genog_weight(math::sqrt(h2v / g2v), pairs.beta ? pairs.beta[p] : Real(0));
+        const Real phi = f.genog_weight(math::sqrt(h2v / g2v), pairs.beta ? Real(pairs.beta[p]) : Real(0));
         const Vec<D, Real> c = (f.shear_stress[i] + f.shear_stress[j]) * f.genog_weight.correction(gv, hv, phi, g2v);
         const V4 cv = {c.v[0], c.v[1], c.v[2], Real(0)};
         to_i += cv;

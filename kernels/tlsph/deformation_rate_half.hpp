@@ -15,11 +15,12 @@ namespace mfsd {
 
 // The rows of the sums W_i = V0_i sum_j (f_j - f_i) (x) g_ij of a vector
 // field f, each pair once; the two finishes below turn them into dF/dt.
-template <int D, class Real>
+// P: how the half list stores its pair data (acceleration_half.hpp).
+template <int D, class Real, class P = Real>
 struct HalfGradientRows {
-  ReferencePairs<D, Real> half;  // each row's pairs with j > i
-  const Vec<D, Real>* field;     // f (the velocity, or a displacement for F = I + grad u)
-  const Real* volume;            // V0
+  ReferencePairs<D, P> half;  // each row's pairs with j > i
+  const Vec<D, Real>* field;  // f (the velocity, or a displacement for F = I + grad u)
+  const Real* volume;         // V0
 
   using Acc = Mat<D, Real>;
 
@@ -44,7 +45,7 @@ struct HalfGradientRows {
       const Index j = half.neighbor[p];
       prefetch(&field[half.neighbor[p + kPairPrefetchDistance]]);
       const Vec<D, Real> d = (field[j] - vi) * Vi;
-      const Vec<D, Real> g = half.grad[p];
+      const Vec<D, Real> g = cast<Real>(half.grad[p]);
       Acc x;
       for (int a = 0; a < D; ++a)
         for (int b = 0; b < D; ++b) x.m[a][b] = d.v[a] * g.v[b];
@@ -62,7 +63,7 @@ struct HalfGradientRows {
       const Index j = half.neighbor[p];
       prefetch(&field[half.neighbor[p + kPairPrefetchDistance]]);
       const Vec<D, Real> vj = field[j];
-      const Vec<D, Real> g = half.grad[p];
+      const Vec<D, Real> g = cast<Real>(half.grad[p]);
       Real d[D];
       for (int a = 0; a < D; ++a) d[a] = (vj.v[a] - vi.v[a]) * Vi;
       Acc& aj = j < sink.hi ? sink.acc[j] : sink.remote[j - sink.hi];
@@ -80,10 +81,10 @@ struct HalfGradientRows {
 };
 
 // The step's last pass: the rate, F and u at the half step, the statistics.
-template <int D, class Real>
+template <int D, class Real, class P = Real>
 struct RateHalfStepHalfFunctor {
-  RateHalfStepFunctor<D, Real> f;  // fields, the half step and the statistics
-  HalfGradientRows<D, Real> rows;  // over f.velocity
+  RateHalfStepFunctor<D, Real> f;     // fields, the half step and the statistics
+  HalfGradientRows<D, Real, P> rows;  // over f.velocity
 
   using Acc = Mat<D, Real>;
 
@@ -100,9 +101,9 @@ struct RateHalfStepHalfFunctor {
 
 // DeformationRateFunctor (deformation_rate.hpp) in the half-pair loop:
 // rate_i = sum_j (f_j - f_i) (x) g_ij B0_i (seed 000 eq. 22).
-template <int D, class Real>
+template <int D, class Real, class P = Real>
 struct DeformationRateHalfFunctor {
-  HalfGradientRows<D, Real> rows;
+  HalfGradientRows<D, Real, P> rows;
   const Mat<D, Real>* correction;  // B0
   Mat<D, Real>* rate;
 

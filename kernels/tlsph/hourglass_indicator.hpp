@@ -72,9 +72,9 @@ struct SumCount {
   }
 };
 
-template <int D, class Real>
+template <int D, class Real, class P = Real>  // P: the half list's pair data (acceleration_half.hpp)
 struct HourglassIndicatorHalfFunctor {
-  ReferencePairs<D, Real> half;  // each row's pairs with j > i
+  ReferencePairs<D, P> half;  // each row's pairs with j > i
   InverseOfF<D, Real> inverse_F;
   const Vec<D, Real>* displacement;
   Real* indicator;
@@ -85,10 +85,10 @@ struct HourglassIndicatorHalfFunctor {
     SumCount<Real> own{Real(0), Real(0)};
     for (PairIndex p = half.offsets[i]; p < half.offsets[i + 1]; ++p) {
       const Index j = half.neighbor[p];
-      const Vec<D, Real> g = half.grad[p];
+      const Vec<D, Real> g = cast<Real>(half.grad[p]);
       const Real g2 = squared_norm(g);
       if (g2 == Real(0)) continue;
-      const Vec<D, Real> h = scaled_e_hat(Fi_inv, inverse_F[j], ui, displacement[j], g, half.stretch[p]);
+      const Vec<D, Real> h = scaled_e_hat(Fi_inv, inverse_F[j], ui, displacement[j], g, Real(half.stretch[p]));
       const SumCount<Real> e{math::sqrt(squared_norm(h) / g2), Real(1)};
       own += e;
       sink.add(j, e);

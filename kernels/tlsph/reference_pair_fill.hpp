@@ -14,17 +14,18 @@
 
 namespace mfsd {
 
-template <int D, class Real>
+// P: the stored pair data's type (Real, or float in a double run).
+template <int D, class Real, class P = Real>
 struct ReferencePairFillFunctor {
   CellNeighborhood<D> hood;
   WendlandC2<D, double> kernel;
   const Real* volume;  // V0 per particle
   const PairIndex* offsets;
   Index* neighbor;
-  Vec<D, Real>* grad;
-  Real* stretch;
+  Vec<D, P>* grad;
+  P* stretch;
   Vec<D, Real>* gradient_sum;
-  Real* beta;            // may be null
+  P* beta;               // may be null
   Mat<D, Real>* moment;  // may be null: A_i = sum_j V0_j (X_j - X_i) (x) grad0_i W_ij
   bool upper_only;       // store only the pairs with j > i
 
@@ -44,9 +45,9 @@ struct ReferencePairFillFunctor {
         for (int b = 0; b < D; ++b) A.m[a][b] -= s * d.v[a] * d.v[b];
       if (f->upper_only && j < i) return;
       f->neighbor[p] = j;
-      f->grad[p] = cast<Real>(d * s);
-      f->stretch[p] = Real(s);
-      if (f->beta) f->beta[p] = Real(f->kernel.W(r) / f->kernel.W(0.0));
+      f->grad[p] = cast<P>(d * s);
+      f->stretch[p] = P(s);
+      if (f->beta) f->beta[p] = P(f->kernel.W(r) / f->kernel.W(0.0));
       ++p;
     }
   };

@@ -18,6 +18,7 @@ struct Case {
   std::vector<std::string> sets;
   SolverOptions::PairLoop loop = SolverOptions::PairLoop::automatic;
   Precision precision = Precision::double_precision;
+  SolverOptions::PairPrecision pairs = SolverOptions::PairPrecision::same;
 };
 
 TEST(MemoryEstimate, FollowsTheStateTheSolverHolds) {
@@ -35,6 +36,11 @@ TEST(MemoryEstimate, FollowsTheStateTheSolverHolds) {
        SolverOptions::PairLoop::automatic,
        Precision::single_precision},
       {"cantilever_plate_3d.json", {"constants.dp=4e-3"}},
+      {"cantilever_plate_3d.json",
+       {"constants.dp=4e-3"},
+       SolverOptions::PairLoop::automatic,
+       Precision::double_precision,
+       SolverOptions::PairPrecision::single},
       {"taylor_bar_3d_round.json", {"constants.R_over_dp=4"}},
       {"crack_branching_2d.json", {"constants.dp=1e-3", "constants.eps0=1e-3"}},
       {"oscillating_plate_ulsph_2d.json", {"constants.H_over_dp=10"}},
@@ -46,6 +52,7 @@ TEST(MemoryEstimate, FollowsTheStateTheSolverHolds) {
     SolverOptions o;
     o.precision = c.precision;
     o.pair_loop = c.loop;
+    o.pair_precision = c.pairs;
     auto solver = make_solver(doc.scene, particles, o);
     solver->initialize();
     const SetupReport r = solver->setup_report();

@@ -36,6 +36,17 @@ struct ReferenceNeighborList {
   DeviceVector<B, Vec<D, Real>> half_grad;
   DeviceVector<B, Real> half_stretch, half_beta;
   Index bandwidth = -1;
+  // The same half list with float pair data (a double run's --pair-precision
+  // float, issue 24 item 4): filled instead of half_grad/half_stretch/half_beta.
+  DeviceVector<B, Vec<D, float>> half_grad_f;
+  DeviceVector<B, float> half_stretch_f, half_beta_f;
+  bool half_float = false;
+
+  ReferencePairs<D, float> half_view_f() const {
+    return ReferencePairs<D, float>{raw(half_offsets), raw(half_neighbor),
+                                    raw(half_grad_f),  raw(half_stretch_f),
+                                    nullptr,           half_beta_f.empty() ? nullptr : raw(half_beta_f)};
+  }
 
   PairIndex total_pairs = 0;  // of the full list (kept when its rows are released)
   bool full_rows = true;      // false after release_full_rows()
@@ -75,7 +86,9 @@ struct ReferenceNeighborList {
 
   double half_bytes() const {
     return double(half_grad.size()) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
-           double(half_beta.size()) * sizeof(Real) + double(half_offsets.size()) * sizeof(PairIndex);
+           double(half_beta.size()) * sizeof(Real) + double(half_offsets.size()) * sizeof(PairIndex) +
+           double(half_grad_f.size()) * (sizeof(Index) + sizeof(Vec<D, float>) + sizeof(float)) +
+           double(half_beta_f.size()) * sizeof(float);
   }
 
   ReferencePairs<D, Real> view() const {
@@ -197,13 +210,18 @@ Index half_pair_bandwidth(const ReferenceNeighborList<Cpu, D, Real>& list, Index
 // With `half_only` (CPU backend, with `reorder`) only the half-pair list is
 // stored, filled straight from the search: the full rows' pair data are never
 // allocated (their offsets are kept: the neighbour counts), so the set-up's
-// peak holds one list, half the full one (issue 24, item 6).
+// peak holds one list, half the full one (issue 24, item 6). With
+// `half_float` its pair data are stored in float (issue 24, item 4).
 template <class B, int D, class Real>
-ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(
-    ParticleSet<B>& particles, const std::vector<BodySearch>& bodies, bool reorder, bool with_beta,
-    const std::vector<Notch<D>>& notches = {}, const char* moment_field = nullptr, bool half_only = false) {
+ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& particles,
+                                                                const std::vector<BodySearch>& bodies, bool reorder,
+                                                                bool with_beta,
+                                                                const std::vector<Notch<D>>& notches = {},
+                                                                const char* moment_field = nullptr,
+                                                                bool half_only = false, bool half_float = false) {
   if (half_only && !(std::is_same<B, Cpu>::value && reorder))
     throw std::logic_error("a half-pair list alone needs the CPU backend and the reordering search");
+  if (half_float && !half_only) throw std::logic_error("float pair data are stored by a half-pair list alone");
   const Index n = particles.size();
   const auto host_x = to_host<B>(particles.template buffer<Vec<D, double>>(field::reference_position_double));
   std::vector<double> lo(bodies.size() * D), hi(bodies.size() * D);
@@ -236,29 +254,44 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(
   list.total_pairs = total;
   const size_t stored = size_t(half_only ? half_total : total);
   auto& neighbor = half_only ? list.half_neighbor : list.neighbor;
-  auto& grad = half_only ? list.half_grad : list.grad;
-  auto& stretch = half_only ? list.half_stretch : list.stretch;
-  auto& beta = half_only ? list.half_beta : list.beta;
   neighbor.resize(stored + kPairPrefetchDistance, 0);  // padded for the prefetch
-  grad.resize(stored);
-  stretch.resize(stored);
   list.gradient_sum.resize(size_t(n));
-  if (with_beta) beta.resize(stored);
   Mat<D, Real>* moment = moment_field ? particles.template get<Mat<D, Real>>(moment_field) : nullptr;
-  for (const auto& b : bodies) {
-    hood.radius2 = support_radius2<double>(b.smoothing_length);
-    ReferencePairFillFunctor<D, Real> fill{hood,
-                                           WendlandC2<D, double>::make(b.smoothing_length),
-                                           particles.template get<Real>(field::volume),
-                                           raw(half_only ? list.half_offsets : list.offsets),
-                                           raw(neighbor),
-                                           raw(grad),
-                                           raw(stretch),
-                                           raw(list.gradient_sum),
-                                           with_beta ? raw(beta) : nullptr,
-                                           moment,
-                                           half_only};
-    parallel_for<B>(b.range.begin, b.range.end, fill);
+  // The pair data in P (Real, or float for the half list of a double run).
+  auto fill = [&](auto& grad, auto& stretch, auto& beta) {
+    using P = typename std::remove_reference_t<decltype(stretch)>::value_type;
+    grad.resize(stored);
+    stretch.resize(stored);
+    if (with_beta) beta.resize(stored);
+    for (const auto& b : bodies) {
+      hood.radius2 = support_radius2<double>(b.smoothing_length);
+      ReferencePairFillFunctor<D, Real, P> f{hood,
+                                             WendlandC2<D, double>::make(b.smoothing_length),
+                                             particles.template get<Real>(field::volume),
+                                             raw(half_only ? list.half_offsets : list.offsets),
+                                             raw(neighbor),
+                                             raw(grad),
+                                             raw(stretch),
+                                             raw(list.gradient_sum),
+                                             with_beta ? raw(beta) : nullptr,
+                                             moment,
+                                             half_only};
+      parallel_for<B>(b.range.begin, b.range.end, f);
+    }
+  };
+  list.half_float = half_float;
+  bool filled = false;
+  if constexpr (std::is_same<B, Cpu>::value) {  // the CPU's half loop alone stores float pairs
+    if (half_float) {
+      fill(list.half_grad_f, list.half_stretch_f, list.half_beta_f);
+      filled = true;
+    }
+  }
+  if (!filled) {
+    if (half_only)
+      fill(list.half_grad, list.half_stretch, list.half_beta);
+    else
+      fill(list.grad, list.stretch, list.beta);
   }
   if constexpr (std::is_same<B, Cpu>::value) {
     if (half_only) {

@@ -112,9 +112,14 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
         v.velocity};
     if constexpr (std::is_same<B, Cpu>::value) {
       if (v.half_bandwidth >= 0) {
-        const AccelerationHalfFunctor<D, Real, Hourglass> half{f, v.half_pairs, v.volume};
-        half_pair_for(Cpu{}, s_.range.begin, s_.range.end, v.half_bandwidth, Vec<D, Real>::zero(), v.acceleration,
-                      half_workspace_, half, [&](Index i, const Vec<D, Real>& total) { half.finish(i, total); });
+        auto loop = [&](const auto& half) {
+          half_pair_for(Cpu{}, s_.range.begin, s_.range.end, v.half_bandwidth, Vec<D, Real>::zero(), v.acceleration,
+                        half_workspace_, half, [&](Index i, const Vec<D, Real>& total) { half.finish(i, total); });
+        };
+        if (v.half_float)
+          loop(AccelerationHalfFunctor<D, Real, Hourglass, float>{f, v.half_pairs_f, v.volume});
+        else
+          loop(AccelerationHalfFunctor<D, Real, Hourglass>{f, v.half_pairs, v.volume});
         return;
       }
     }

@@ -139,9 +139,18 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     const bool half_loop =
         std::is_same<B, Cpu>::value && options_.pair_loop != SolverOptions::PairLoop::full && !sliced;
     const bool half_only = half_loop && scene_.solver.reorder && !scene_.solver.relaxation.enabled && !has_fracture_;
+    // Float pair data in a double run (issue 24 item 4): the half list alone.
+    const bool half_float =
+        options_.pair_precision == SolverOptions::PairPrecision::single && !std::is_same<Real, float>::value;
+    if (half_float && !half_only)
+      throw UsageError(
+          "--pair-precision float stores the CPU half-pair loop's own list in float; this run does not keep that "
+          "list alone (it runs on the GPU, with --pair-loop full or --pair-layout sliced, with relaxation or a phase "
+          "field, or without reordering)");
+    report_.pair_precision = half_float || std::is_same<Real, float>::value ? "float" : "double";
     particles_.template add<Mat<D, Real>>(field::correction_matrix);  // the moment matrices, then B0
     pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter,
-                                                       notches, field::correction_matrix, half_only);
+                                                       notches, field::correction_matrix, half_only, half_float);
     particles_.remove(field::reference_position_double);
     if constexpr (std::is_same<B, Cpu>::value)
       if (half_loop && !half_only) build_half_pair_list(pairs_, n);
@@ -320,13 +329,18 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       const StepStatistics<Real> init{Real(0), Real(0), Real(0), Real(0), n};
       if constexpr (std::is_same<B, Cpu>::value) {
         if (v_.half_bandwidth >= 0) {  // the half-pair loop, dF/dt summed in place of the rate
-          const RateHalfStepHalfFunctor<D, Real> h{f, {v_.half_pairs, v_.velocity, v_.volume}};
-          stats_slot = results_.template reduce_into<StepStatistics<Real>>([&](StepStatistics<Real>* out) {
-            half_pair_reduce(
-                Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate, rate_workspace_, h,
-                [&](Index i, const Mat<D, Real>& total) { return h.finish(i, total); }, init,
-                StepStatisticsCombine<Real>{}, out);
-          });
+          auto loop = [&](const auto& h) {
+            stats_slot = results_.template reduce_into<StepStatistics<Real>>([&](StepStatistics<Real>* out) {
+              half_pair_reduce(
+                  Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate, rate_workspace_, h,
+                  [&](Index i, const Mat<D, Real>& total) { return h.finish(i, total); }, init,
+                  StepStatisticsCombine<Real>{}, out);
+            });
+          };
+          if (v_.half_float)
+            loop(RateHalfStepHalfFunctor<D, Real, float>{f, {v_.half_pairs_f, v_.velocity, v_.volume}});
+          else
+            loop(RateHalfStepHalfFunctor<D, Real>{f, {v_.half_pairs, v_.velocity, v_.volume}});
           return;
         }
       }
@@ -464,6 +478,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     const bool half = pairs_.bandwidth >= 0;
     v_.half_pairs = half ? pairs_.half_view() : ReferencePairs<D, Real>{};
     v_.half_bandwidth = pairs_.bandwidth;
+    v_.half_float = half && pairs_.half_float;
+    v_.half_pairs_f = v_.half_float ? pairs_.half_view_f() : ReferencePairs<D, float>{};
     report_.pair_loop = half ? "half" : "full";
     v_.reference_position = particles_.template get<Vec<D, Real>>(field::reference_position);
     v_.displacement = particles_.template get<Vec<D, Real>>(field::displacement);
@@ -663,9 +679,15 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     const Index n = particles_.size();
     if constexpr (std::is_same<B, Cpu>::value) {
       if (v_.half_bandwidth >= 0) {
-        const DeformationRateHalfFunctor<D, Real> h{{v_.half_pairs, f, v_.volume}, v_.correction, v_.deformation_rate};
-        half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate, rate_workspace_,
-                      h, [&](Index i, const Mat<D, Real>& total) { h.finish(i, total); });
+        auto loop = [&](const auto& h) {
+          half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate,
+                        rate_workspace_, h, [&](Index i, const Mat<D, Real>& total) { h.finish(i, total); });
+        };
+        if (v_.half_float)
+          loop(DeformationRateHalfFunctor<D, Real, float>{
+              {v_.half_pairs_f, f, v_.volume}, v_.correction, v_.deformation_rate});
+        else
+          loop(DeformationRateHalfFunctor<D, Real>{{v_.half_pairs, f, v_.volume}, v_.correction, v_.deformation_rate});
         return;
       }
     }
@@ -679,11 +701,17 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     const InverseOfF<D, Real> inverse_F{v_.inverse_F, v_.deformation_gradient};
     if constexpr (std::is_same<B, Cpu>::value) {
       if (v_.half_bandwidth >= 0) {
-        const HourglassIndicatorHalfFunctor<D, Real> h{v_.half_pairs, inverse_F, v_.displacement,
-                                                       v_.hourglass_indicator};
         indicator_sums_.resize(size_t(n));
-        half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, SumCount<Real>{Real(0), Real(0)}, indicator_sums_.data(),
-                      indicator_workspace_, h, [&](Index i, const SumCount<Real>& t) { h.finish(i, t); });
+        auto loop = [&](const auto& h) {
+          half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, SumCount<Real>{Real(0), Real(0)}, indicator_sums_.data(),
+                        indicator_workspace_, h, [&](Index i, const SumCount<Real>& t) { h.finish(i, t); });
+        };
+        if (v_.half_float)
+          loop(HourglassIndicatorHalfFunctor<D, Real, float>{v_.half_pairs_f, inverse_F, v_.displacement,
+                                                             v_.hourglass_indicator});
+        else
+          loop(HourglassIndicatorHalfFunctor<D, Real>{v_.half_pairs, inverse_F, v_.displacement,
+                                                      v_.hourglass_indicator});
         return;
       }
     }

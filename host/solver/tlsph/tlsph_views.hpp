@@ -17,6 +17,10 @@ struct TlsphViews : Kinematics<D, Real> {
   // the largest j - i; half_bandwidth -1 where the full gather runs.
   ReferencePairs<D, Real> half_pairs{};
   Index half_bandwidth = -1;
+  // The same with float pair data (--pair-precision float in a double run,
+  // issue 24 item 4): then half_float, and half_pairs_f in place of half_pairs.
+  ReferencePairs<D, float> half_pairs_f{};
+  bool half_float = false;
   Mat<D, Real>* deformation_gradient;
   Mat<D, Real>* deformation_rate;
   const Mat<D, Real>* correction;
