@@ -104,6 +104,18 @@ struct ReferenceNeighborList {
   }
 };
 
+// The largest j - i of the half-pair list's pairs (its bandwidth), CPU.
+template <int D, class Real>
+Index half_pair_bandwidth(const ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
+  const PairIndex* offsets = raw(list.half_offsets);
+  const Index* neighbor = raw(list.half_neighbor);
+  Index bandwidth = 0;
+#pragma omp parallel for schedule(static) reduction(max : bandwidth)
+  for (Index i = 0; i < n; ++i)
+    for (PairIndex p = offsets[i]; p < offsets[i + 1]; ++p) bandwidth = std::max(bandwidth, neighbor[p] - i);
+  return bandwidth;
+}
+
 // The half-pair list of `list` (see ReferenceNeighborList), once, CPU backend
 // only: read and written in place (no host copies, so the set-up's peak holds
 // the two lists and nothing more). False, and nothing built, where a row is
@@ -142,8 +154,7 @@ bool build_half_pair_list(ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
   Vec<D, Real>* hg = raw(list.half_grad);
   Real* hs = raw(list.half_stretch);
   Real* hb = beta ? raw(list.half_beta) : nullptr;
-  Index bandwidth = 0;
-#pragma omp parallel for schedule(static) reduction(max : bandwidth)
+#pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {
     PairIndex q = half_offsets[size_t(i)];
     for (PairIndex p = first[size_t(i)]; p < offsets[i + 1]; ++p, ++q) {
@@ -151,10 +162,9 @@ bool build_half_pair_list(ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
       hg[q] = grad[p];
       hs[q] = stretch[p];
       if (hb) hb[q] = beta[p];
-      bandwidth = std::max(bandwidth, neighbor[p] - i);
     }
   }
-  list.bandwidth = bandwidth;
+  list.bandwidth = half_pair_bandwidth(list, n);
   return true;
 }
 
@@ -187,18 +197,6 @@ double make_sliced_layout(ReferenceNeighborList<B, D, Real>& list, Index n, Inde
   list.beta.swap(beta);
   list.slice_height = height;
   return list.total_pairs > 0 ? double(total) / double(list.total_pairs) : 1.0;
-}
-
-// The largest j - i of the half-pair list's pairs (its bandwidth), CPU.
-template <int D, class Real>
-Index half_pair_bandwidth(const ReferenceNeighborList<Cpu, D, Real>& list, Index n) {
-  const PairIndex* offsets = raw(list.half_offsets);
-  const Index* neighbor = raw(list.half_neighbor);
-  Index bandwidth = 0;
-#pragma omp parallel for schedule(static) reduction(max : bandwidth)
-  for (Index i = 0; i < n; ++i)
-    for (PairIndex p = offsets[i]; p < offsets[i + 1]; ++p) bandwidth = std::max(bandwidth, neighbor[p] - i);
-  return bandwidth;
 }
 
 // Sorts particles by (body, cell) and, when `reorder`, permutes every field of
