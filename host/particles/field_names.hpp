@@ -41,18 +41,40 @@ inline constexpr const char* fracture_released = "fracture_released";  // releas
 inline constexpr const char* phase_field_lower = "phase_field_lower";  // restrict_phase_field bound
 inline constexpr const char* phase_field_next = "phase_field_next";    // s_{n+1} within a step
 // ULSPH (host/solver/ulsph/; kernels/ulsph/): the state and the stage fields.
-inline constexpr const char* mass = "mass";                                      // m = rho0 V0
-inline constexpr const char* density = "density";                                // rho
-inline constexpr const char* current_volume = "current_volume";  // V = m / rho at the step's start (pair refresh)
+inline constexpr const char* mass = "mass";                        // m = rho0 V0
+inline constexpr const char* density = "density";                  // rho
+inline constexpr const char* current_volume = "current_volume";    // V = m / rho at the step's start (pair refresh)
 inline constexpr const char* dissipated_work = "dissipated_work";  // J taken by the Riemann dissipation and GNOG
 inline constexpr const char* numerical_acceleration = "numerical_acceleration";  // Riemann + GNOG part of a
-inline constexpr const char* plastic_work = "plastic_work";        // J of plastic work (ULSPH J2)
+inline constexpr const char* plastic_work = "plastic_work";                      // J of plastic work (ULSPH J2)
 inline constexpr const char* pair_density = "pair_density";  // rho when the pair data (V_j = m_j/rho_j) were formed
-inline constexpr const char* pressure = "pressure";                              // p = K (rho/rho0 - 1)
+inline constexpr const char* pressure = "pressure";          // p = K (rho/rho0 - 1)
 inline constexpr const char* velocity_gradient = "velocity_gradient";            // L_ab = dv_a/dx_b
 inline constexpr const char* hourglass_acceleration = "hourglass_acceleration";  // GNOG a_h, accumulated
 inline constexpr const char* current_position = "current_position";              // x = X + u for the search
 inline constexpr const char* plastic_scale = "plastic_scale";                    // kappa of J2 bodies
 inline constexpr const char* failed = "failed";                                  // 1 once a particle failed
 inline constexpr const char* failed_output = "failed_output";                    // the same as a Real (outputs)
+// RKPM (host/solver/rkpm/): the operators' configuration and the node state.
+inline constexpr const char* support = "support";                      // a = a~ h0 J^(1/d)
+inline constexpr const char* operator_position = "operator_position";  // x of the operators
+inline constexpr const char* build_position = "build_position";        // x at the list's build
+inline constexpr const char* increment = "increment";                  // du since the operators' configuration
+inline constexpr const char* cell_map = "cell_map";                    // F_cell
+inline constexpr const char* cell_lo = "cell_lo";                      // initial cell extents
+inline constexpr const char* cell_hi = "cell_hi";
+inline constexpr const char* cell_surface = "cell_surface";            // boundary face bits
+inline constexpr const char* singular = "singular";                    // singular-kernel node
+inline constexpr const char* node_operator = "node_operator";          // faces and RK coefficients
+inline constexpr const char* implicit_gradient = "implicit_gradient";  // NSNI data
+inline constexpr const char* operator_status = "operator_status";      // regularized / failed points
+inline constexpr const char* reach = "reach";                          // a + cell reach
+inline constexpr const char* effective_stress = "effective_stress";    // sigma_bar, 3 x 3
+inline constexpr const char* stress_gradient = "stress_gradient";      // NSNI sigma^(i)
+inline constexpr const char* nsni_stress = "nsni_stress";              // NSNI tau^(i)
+inline constexpr const char* damage = "damage";                        // D
+inline constexpr const char* internal_work = "internal_work";          // J
+inline constexpr const char* lumped_mass = "lumped_mass";              // M_I
+inline constexpr const char* lumped_volume = "lumped_volume";          // M_I / rho0
+inline constexpr const char* density0 = "density0";                    // rho0 per node
 }  // namespace mfsd::field

@@ -124,7 +124,7 @@ const char* to_string(MaterialModel m) {
   }
   return "?";
 }
-const char* to_string(Method m) { return m == Method::ulsph ? "ulsph" : "tlsph"; }
+const char* to_string(Method m) { return m == Method::ulsph ? "ulsph" : m == Method::rkpm ? "rkpm" : "tlsph"; }
 
 const char* to_string(HourglassControl h) {
   switch (h) {

@@ -19,7 +19,7 @@ namespace mfsd {
 enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel, holzapfel_ogden, linear_elastic };
 enum class HardeningLaw { linear, saturation, herschel_bulkley };
 // The solution method of a body (bodies[].method; solver.method is the default).
-enum class Method { tlsph, ulsph };
+enum class Method { tlsph, ulsph, rkpm };
 // Hourglass control: tlsph none | laplacian | genog, ulsph none | gnog | gnog_amc.
 enum class HourglassControl { none, laplacian, genog, gnog, gnog_amc };
 // GENOG correction weight (solver.genog.limiter; kernels/tlsph/hourglass.hpp):
@@ -201,20 +201,39 @@ struct RelaxationSpec {
 
 // ULSPH settings (solver.ulsph; seed 002 section 3.3, formulations.md section 3).
 struct UlsphSpec {
-  bool dual_time_stepping = true;   // advection steps of acoustic sub-steps | one criterion (every step rebuilds)
-  double advection_cfl = 0.2;       // dt_adv = advection_cfl h / max(U_ref, |v|max)
-  double reference_speed = 0;       // U_ref, m/s
-  bool refresh_pairs = true;        // pair data at every step's positions between searches (theory.md)
+  bool dual_time_stepping = true;    // advection steps of acoustic sub-steps | one criterion (every step rebuilds)
+  double advection_cfl = 0.2;        // dt_adv = advection_cfl h / max(U_ref, |v|max)
+  double reference_speed = 0;        // U_ref, m/s
+  bool refresh_pairs = true;         // pair data at every step's positions between searches (theory.md)
   bool remove_plastic_rate = false;  // J2: radial return | the seed's rate without its plastic part first
-  double xi = -1;                   // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
-  double riemann_limiter = 0;       // eta of the low-dissipation limiter (seed 002 ref. [38]); 0: none
+  double xi = -1;                    // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
+  double riemann_limiter = 0;        // eta of the low-dissipation limiter (seed 002 ref. [38]); 0: none
   // solver.ulsph.hourglass, or solver.hourglass when ulsph is the scene's method.
   HourglassControl hourglass = HourglassControl::gnog;
+};
+
+// Semi-Lagrangian RKPM settings (solver.rkpm; seed 004, ../shared/reference/rkpm.md).
+enum class QuasiLinear { regularize, shepard, off };  // rkpm.md 1.6
+enum class SmoothingCells { mapped, box };            // rkpm.md 3.2
+struct RkpmSpec {
+  double support_factor = 2.0;         // a~: a_I = a~ h0 J^(1/d) (rkpm.md 1.2)
+  bool nsni = true;                    // integration: snni | nsni (rkpm.md 3.5)
+  double nsni_scale = 1.0;             // c_s, the NSNI stiffness scale (studies only)
+  bool variational_correction = true;  // VC of the test gradient (rkpm.md 3.4)
+  QuasiLinear quasi_linear = QuasiLinear::regularize;
+  double regularization = 1e-3;  // tau of the quasi-linear regularizer (rkpm.md 1.6)
+  SmoothingCells cells = SmoothingCells::mapped;
+  double recell_condition = 10;  // kappa_max: re-cell when cond(F_cell) exceeds it
+  bool row_sum_mass = true;      // mass: row_sum | nodal (rkpm.md 3.3)
+  double damping = 0;            // alpha_d of C = alpha_d M, 1/s (seed 004 eq. 29)
+  double skin = 0.15;            // r_skin / dp of the neighbour list (rkpm.md 2)
+  bool singular_kernel = true;   // on nodes of essential conditions (rkpm.md 1.7, 6)
 };
 
 struct SolverSpec {
   Method method = Method::tlsph;
   UlsphSpec ulsph;
+  RkpmSpec rkpm;
   HourglassControl hourglass = HourglassControl::genog;
   double h_over_dp = 1.15;
   double cfl = 0.6;

@@ -201,7 +201,21 @@ void check_body_properties(const BodySpec& body, const SolverSpec& solver, int d
 // family; neither takes the other's.
 void check_method_material(const BodySpec& body, const SolverSpec& solver, const std::string& path) {
   const MaterialSpec& m = body.material;
-  if (solver.method == Method::ulsph) {
+  if (solver.method == Method::rkpm) {
+    // RKPM's stress update is hypo-elastic (Hughes-Winget, seed 004 eq. 25-26).
+    const bool ok = m.model == MaterialModel::linear_elastic ||
+                    (m.model == MaterialModel::j2 && m.hardening == HardeningLaw::linear);
+    if (!ok)
+      throw SceneError(path + "/model", std::string("\"") + to_string(m.model) + "\" with solver.method \"rkpm\"",
+                       "\"linear_elastic\" or \"j2\" with linear hardening (the hypo-elastic laws of seed 004 "
+                       "section 7; hyperelastic models need solver.method \"tlsph\")");
+    if (m.fracture.enabled)
+      throw SceneError(path + "/fracture", "phase-field fracture with solver.method \"rkpm\"",
+                       "solver.method \"tlsph\"");
+    if (m.failure_pressure > 0)
+      throw SceneError(path + "/failure_pressure", "tension failure with solver.method \"rkpm\"",
+                       "solver.method \"ulsph\"");
+  } else if (solver.method == Method::ulsph) {
     const bool ok = m.model == MaterialModel::linear_elastic ||
                     (m.model == MaterialModel::j2 && m.hardening == HardeningLaw::linear);
     if (!ok)
@@ -213,7 +227,8 @@ void check_method_material(const BodySpec& body, const SolverSpec& solver, const
   } else {
     if (m.model == MaterialModel::linear_elastic)
       throw SceneError(path + "/model", "\"linear_elastic\" with solver.method \"tlsph\"",
-                       "a hyperelastic model (neo_hookean, saint_venant_kirchhoff, ...), or solver.method \"ulsph\"");
+                       "a hyperelastic model (neo_hookean, saint_venant_kirchhoff, ...), or solver.method \"ulsph\" "
+                       "or \"rkpm\"");
     if (m.failure_pressure > 0)
       throw SceneError(path + "/failure_pressure", "tension failure with solver.method \"tlsph\"",
                        "solver.method \"ulsph\" (TLSPH bodies break by phase-field fracture)");
@@ -224,14 +239,67 @@ void check_method_material(const BodySpec& body, const SolverSpec& solver, const
 const char* const kTlsphOnlyKeys[] = {
     "kernel_correction_in_force", "correction_floor", "deformed_time_step", "zeta", "genog", "damping", "relaxation"};
 
+// solver.method "rkpm": the keys RKPM shares with the others and solver.rkpm
+// (docs/scene-reference.md; defaults from ../shared/reference/rkpm.md).
+SolverSpec read_rkpm_solver(JsonNode& s, SolverSpec spec, int dim) {
+  for (const char* key : kTlsphOnlyKeys)
+    if (s.has(key))
+      throw SceneError(s.key_path(key), "a setting of method tlsph", "no such key with solver.method \"rkpm\"");
+  for (const char* key : {"ulsph", "hourglass", "sound_speed", "h_over_dp"})
+    if (s.has(key))
+      throw SceneError(s.key_path(key), std::string("solver.") + key + " with solver.method \"rkpm\"",
+                       "no such key: RKPM needs no hourglass control and sizes its supports with "
+                       "solver.rkpm.support_factor");
+  spec.hourglass = HourglassControl::none;
+  spec.damping_factor = 0;
+  spec.sound_speed = SoundSpeed::p_wave;  // c = sqrt((lambda + 2 mu)/rho), rkpm.md 5.3
+  spec.end_time = s.number("end_time", Range::positive());
+  spec.cfl_given = s.has("cfl");
+  // rkpm.md 5.3: CFL 0.5 with NSNI at a~ >= 1.75 (critical steps 1.0-1.3 h/c).
+  spec.cfl = s.number("cfl", 0.5, Range{0.0, 1.0, true, false, "a number in (0, 1]"});
+  spec.precision = s.choice("precision", {"double", "float"}, "double") == "float" ? Precision::single_precision
+                                                                                   : Precision::double_precision;
+  spec.reorder = s.boolean("reorder", true);
+  const auto g = s.vector("gravity", size_t(dim), std::vector<double>(size_t(dim), 0.0), Range::any());
+  for (int a = 0; a < dim; ++a) spec.gravity[a] = g[a];
+  RkpmSpec& r = spec.rkpm;
+  JsonNode k = s.object_or_empty("rkpm");
+  // rkpm.md 1.2: a linear basis needs >= d + 1 covering kernels; 1.5-2.0.
+  r.support_factor =
+      k.number("support_factor", 2.0, Range{1.0, 3.0, false, false, "a number in (1, 3] (1.5 to 2.0 advised)"});
+  r.nsni = k.choice("integration", {"nsni", "snni"}, "nsni") == "nsni";
+  r.nsni_scale = k.number("nsni_scale", 1.0, Range{0.0, 4.0, false, false, "a number in [0, 4] (1: the paper's)"});
+  r.variational_correction = k.boolean("variational_correction", true);
+  const std::string q = k.choice("quasi_linear", {"regularize", "shepard", "off"}, "regularize");
+  r.quasi_linear = q == "regularize" ? QuasiLinear::regularize
+                   : q == "shepard"  ? QuasiLinear::shepard
+                                     : QuasiLinear::off;
+  r.regularization =
+      k.number("regularization", 1e-3, Range{0.0, 0.1, false, false, "a number in (0, 0.1] (1e-3 to 1e-2 advised)"});
+  r.cells = k.choice("cells", {"mapped", "box"}, "mapped") == "mapped" ? SmoothingCells::mapped : SmoothingCells::box;
+  r.recell_condition = k.number("recell_condition", 10.0, Range{1.0, 1e6, true, false, "a number in (1, 1e6]"});
+  r.row_sum_mass = k.choice("mass", {"row_sum", "nodal"}, "row_sum") == "row_sum";
+  r.damping = k.number("damping", 0.0, Range::non_negative());
+  r.skin = k.number("skin", 0.15, Range{0.0, 1.0, true, false, "a number in (0, 1] (times the spacing)"});
+  r.singular_kernel =
+      k.choice("essential_boundary", {"singular_kernel", "nodal"}, "singular_kernel") == "singular_kernel";
+  k.finish();
+  s.finish();
+  return spec;
+}
+
 SolverSpec read_solver(JsonNode s, int dim) {
   SolverSpec spec;
   // solver.method; solver.formulation is its earlier name.
   if (s.has("method") && s.has("formulation"))
     throw SceneError(s.key_path("formulation"), "both method and formulation", "solver.method only");
-  const std::string method = s.has("formulation") ? s.choice("formulation", {"tlsph", "ulsph"}, "tlsph")
-                                                  : s.choice("method", {"tlsph", "ulsph"}, "tlsph");
-  spec.method = method == "ulsph" ? Method::ulsph : Method::tlsph;
+  const std::string method = s.has("formulation") ? s.choice("formulation", {"tlsph", "ulsph", "rkpm"}, "tlsph")
+                                                  : s.choice("method", {"tlsph", "ulsph", "rkpm"}, "tlsph");
+  spec.method = method == "ulsph" ? Method::ulsph : method == "rkpm" ? Method::rkpm : Method::tlsph;
+  if (spec.method == Method::rkpm) return read_rkpm_solver(s, spec, dim);
+  if (s.has("rkpm"))
+    throw SceneError(s.key_path("rkpm"), "RKPM settings with solver.method \"" + method + "\"",
+                     "solver.method \"rkpm\", or no solver.rkpm");
   // solver.ulsph: the settings of the ULSPH bodies, whichever the scene's method.
   auto ulsph_hourglass = [](const std::string& hg) {
     return hg == "none" ? HourglassControl::none : (hg == "gnog" ? HourglassControl::gnog : HourglassControl::gnog_amc);
@@ -572,8 +640,13 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
     JsonNode node = root.element("bodies", b, *bodies[b]);
     BodySpec body;
     body.name = node.string("name");
-    body.method = node.choice("method", {"tlsph", "ulsph"}, to_string(scene.solver.method)) == "ulsph" ? Method::ulsph
-                                                                                                     : Method::tlsph;
+    const std::string body_method = node.choice("method", {"tlsph", "ulsph", "rkpm"}, to_string(scene.solver.method));
+    body.method = body_method == "ulsph" ? Method::ulsph : body_method == "rkpm" ? Method::rkpm : Method::tlsph;
+    if ((body.method == Method::rkpm) != (scene.solver.method == Method::rkpm))
+      throw SceneError(node.key_path("method"),
+                       "\"" + body_method + "\" in a scene of method \"" + to_string(scene.solver.method) + "\"",
+                       "one method for every body when RKPM is involved (RKPM bodies do not yet share a scene "
+                       "with SPH bodies)");
     // The settings this body runs with (solver_for: a body of the other method takes that method's defaults).
     const SolverSpec solver = solver_for(scene.solver, body.method);
     if (!names.insert(body.name).second)
@@ -618,8 +691,9 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
   }
 
   if (scene.solver.method == Method::tlsph && doc.contains("solver") && doc["solver"].is_object() &&
-      doc["solver"].contains("ulsph") &&
-      std::none_of(scene.bodies.begin(), scene.bodies.end(), [](const BodySpec& b) { return b.method == Method::ulsph; }))
+      doc["solver"].contains("ulsph") && std::none_of(scene.bodies.begin(), scene.bodies.end(), [](const BodySpec& b) {
+        return b.method == Method::ulsph;
+      }))
     throw SceneError("/solver/ulsph", "ULSPH settings in a scene without ULSPH bodies",
                      "solver.method \"ulsph\" or bodies[].method \"ulsph\", or no solver.ulsph");
 

@@ -5,11 +5,13 @@
 
 namespace mfsd {
 
-#define MFSD_DECLARE(backend, dim, real)                                                                \
-  std::unique_ptr<Solver> make_tlsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
-                                                                 const SolverOptions&);                 \
-  std::unique_ptr<Solver> make_ulsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
-                                                                 const SolverOptions&);                 \
+#define MFSD_DECLARE(backend, dim, real)                                                                  \
+  std::unique_ptr<Solver> make_tlsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&,   \
+                                                                 const SolverOptions&);                   \
+  std::unique_ptr<Solver> make_ulsph_##backend##_##dim##d_##real(const Scene&, const InitialParticles&,   \
+                                                                 const SolverOptions&);                   \
+  std::unique_ptr<Solver> make_rkpm_##backend##_##dim##d_##real(const Scene&, const InitialParticles&,    \
+                                                                const SolverOptions&);                    \
   std::unique_ptr<Solver> make_coupled_##backend##_##dim##d_##real(const Scene&, const InitialParticles&, \
                                                                    const SolverOptions&);
 MFSD_DECLARE(cpu, 2, float)
@@ -39,6 +41,10 @@ std::unique_ptr<Solver> make_solver(const Scene& given, const InitialParticles& 
       if (d == 2) return single ? make_coupled_cpu_2d_float(scene, p, o) : make_coupled_cpu_2d_double(scene, p, o);
       return single ? make_coupled_cpu_3d_float(scene, p, o) : make_coupled_cpu_3d_double(scene, p, o);
     }
+    if (scene.solver.method == Method::rkpm) {
+      if (d == 2) return single ? make_rkpm_cpu_2d_float(scene, p, o) : make_rkpm_cpu_2d_double(scene, p, o);
+      return single ? make_rkpm_cpu_3d_float(scene, p, o) : make_rkpm_cpu_3d_double(scene, p, o);
+    }
     if (scene.solver.method == Method::ulsph) {
       if (d == 2) return single ? make_ulsph_cpu_2d_float(scene, p, o) : make_ulsph_cpu_2d_double(scene, p, o);
       return single ? make_ulsph_cpu_3d_float(scene, p, o) : make_ulsph_cpu_3d_double(scene, p, o);
@@ -54,6 +60,10 @@ std::unique_ptr<Solver> make_solver(const Scene& given, const InitialParticles& 
     if (mixed_methods(scene)) {
       if (d == 2) return single ? make_coupled_cuda_2d_float(scene, p, o) : make_coupled_cuda_2d_double(scene, p, o);
       return single ? make_coupled_cuda_3d_float(scene, p, o) : make_coupled_cuda_3d_double(scene, p, o);
+    }
+    if (scene.solver.method == Method::rkpm) {
+      if (d == 2) return single ? make_rkpm_cuda_2d_float(scene, p, o) : make_rkpm_cuda_2d_double(scene, p, o);
+      return single ? make_rkpm_cuda_3d_float(scene, p, o) : make_rkpm_cuda_3d_double(scene, p, o);
     }
     if (scene.solver.method == Method::ulsph) {
       if (d == 2) return single ? make_ulsph_cuda_2d_float(scene, p, o) : make_ulsph_cuda_2d_double(scene, p, o);

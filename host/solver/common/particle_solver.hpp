@@ -173,7 +173,7 @@ class ParticleSolver : public Solver {
                                particles_.template get<Vec<D, Real>>(field::displacement),
                                particles_.template get<Vec<D, Real>>(field::velocity),
                                particles_.template get<Vec<D, Real>>(field::acceleration),
-                               particles_.template get<Real>(field::volume)};
+                               particles_.template get<Real>(kinematic_volume_)};
   }
 
   // One timed stage; a device error names it (backend_error.hpp), and in
@@ -316,7 +316,7 @@ class ParticleSolver : public Solver {
     const ContactSpec& spec = scene_.contact;
     if (!spec.enabled) return;
     contact_part_ = ContactPartSetup<Real>{
-        {}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(field::volume)), std::move(near_surface)};
+        {}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(kinematic_volume_)), std::move(near_surface)};
     size_t in_contact = 0;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       contact_part_.scene_body.push_back(b);
@@ -408,6 +408,9 @@ class ParticleSolver : public Solver {
     return s + ")";
   }
 
+  // The volume field whose rho0 V is the mass conditions, walls, clamps,
+  // measure planes and contact act on: V0, or RKPM's lumped mass / rho0.
+  const char* kinematic_volume_ = field::volume;
   Scene scene_;
   InitialParticles init_;
   SolverOptions options_;

@@ -1,0 +1,161 @@
+// RKPM stress stage (rkpm.md 5.2 stage 2; seed 004 section 7, eq. 25-26):
+// per node L, a gather over row L with the operators of the configuration
+// they were built in (x^n):
+//   L_n = sum_I (du_I - du_L) (x) grad~Psi_I(x_L)           (rkpm.md 4.1)
+//   Hughes-Winget: Deps, Q; sigma_tr = Q sigma Q^T + C:Deps   (rkpm.md 4.2)
+//   return mapping (J2, Drucker-Prager) and damage           (rkpm.md 4.3-4.4)
+//   F_cell <- (I + L_n) F_cell, re-celled when cond > kappa  (rkpm.md 3.2)
+//   NSNI stress gradients sigma^(i) and tau^(i) = sum_j Theta_ij sigma^(j)  (rkpm.md 3.5, 4.5)
+// and the internal and plastic work. du_I: the nodes' displacement since the
+// operators' configuration.
+#pragma once
+#include "kernels/rkpm/hughes_winget.hpp"
+#include "kernels/rkpm/node_operator.hpp"
+#include "kernels/rkpm/stress_update.hpp"
+
+namespace mfsd::rkpm {
+
+// NSNI stress gradients sigma^(i) (or tau^(i)), in-plane D x D each.
+template <int D, class Real>
+struct StressGradient {
+  Mat<D, Real> g[D];
+};
+
+enum class LawKind : int { elastic, j2, drucker_prager };
+
+// The hypo-elastic law of a body (seed 004 section 7): elastic moduli, the
+// plastic model and the damage law.
+struct StressLaw {
+  LawKind kind = LawKind::elastic;
+  double K = 0, mu = 0;
+  J2Hardening j2{0, 0, 0};
+  DruckerPragerCone dp{0, 0, 0, 0, 0, 0};
+  DamageLaw damage;
+};
+
+template <int D>
+MFSD_HD inline Mat<D, double> in_plane(const Mat<3, double>& A) {
+  Mat<D, double> r;
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b) r.m[a][b] = A.m[a][b];
+  return r;
+}
+
+// C:e for an in-plane (plane strain) or 3-D strain: lambda tr(e) I + 2 mu e.
+template <int D>
+MFSD_HD inline Mat<D, double> elastic_stress(const Mat<D, double>& e, double K, double mu) {
+  Mat<D, double> s = e * (2.0 * mu);
+  s.add_diagonal((K - 2.0 * mu / 3.0) * trace(e));
+  return s;
+}
+
+template <int D, class Real>
+struct StressFunctor {
+  PairList<D, Real> rows;
+  NodeFields<D, Real> nodes;  // positions and supports of the operators' configuration
+  const NodeOperator<D, Real>* op;
+  const ImplicitGradient<D, Real>* nsni;  // null: SNNI
+  const Vec<D, Real>* increment;          // du since the operators' configuration
+  const Real* initial_volume;             // V0
+  const Vec<D, Real>* cell_lo;
+  const Vec<D, Real>* cell_hi;
+  Mat<D, Real>* cell_map;                    // F_cell, updated
+  Mat<3, Real>* stress;                      // sigma_bar (effective Cauchy), updated
+  Real* plastic_strain;                      // null for elastic bodies
+  Real* damage;                              // null without a damage law
+  StressGradient<D, Real>* stress_gradient;  // sigma^(i) (NSNI)
+  StressGradient<D, Real>* nsni_stress;      // tau^(i) = sum_j Theta_ij (1 - D) sigma^(j)
+  Real* internal_work;                       // J, accumulated
+  Real* plastic_work;                        // J, accumulated (null: elastic)
+  StressLaw law;
+  double nsni_scale;  // c_s
+  double recell_condition;
+  bool box_cells;
+  double dt;
+
+  MFSD_HD void operator()(Index L) const {
+    const NodeOperator<D, Real>& o = op[L];
+    const Vec<D, Real> xL = nodes.position[L];
+    const Vec<D, double> duL = cast<double>(increment[L]);
+    const double inv_V = 1.0 / double(o.volume);
+    const double inv_abar = double(o.inv_abar);
+    Mat<D, double> Ln = Mat<D, double>::zero();
+    Mat<D, double> de[D];
+    for (int i = 0; i < D; ++i) de[i] = Mat<D, double>::zero();
+    const PairRow row = rows.row(L);
+    for (Index k = 0; k < row.count; ++k) {
+      const Index I = rows.neighbor[row.at(k)];
+      const Vec<D, Real> xI = nodes.position[I];
+      const Vec<D, double> d = cast<double>(xL - xI);
+      const double aI = double(nodes.support[I]);
+      const Vec<D, double> du = cast<double>(increment[I]) - duL;
+      const Vec<D, double> grad =
+          smoothed_gradient_volume(o, I, d, aI, nodes.is_singular(I), 0, (Vec<D, double>*)nullptr) * inv_V;
+      Ln += outer(du, grad);  // rkpm.md 4.1: L_n = sum (du_I - du_L) (x) grad~Psi_I
+      if (nsni) {
+        const KernelSample<D> s = kernel<D>(d, aI, false);
+        if (!(s.w > 0.0)) continue;
+        const Mat<D, double> P = implicit_second_derivatives(nsni[L], basis<D>(d, inv_abar), s, inv_abar);
+        // rkpm.md 4.5: Deps^(i)_ab = 1/2 sum_I (du_Ia Psi_I,bi + du_Ib Psi_I,ai)
+        for (int i = 0; i < D; ++i)
+          for (int a = 0; a < D; ++a)
+            for (int b = 0; b < D; ++b) de[i].m[a][b] += 0.5 * (du.v[a] * P.m[b][i] + du.v[b] * P.m[a][i]);
+      }
+    }
+    const HughesWingetIncrement inc = hughes_winget<D>(Ln);  // seed 004 eq. 25-26
+    const Mat<3, double> sigma_n = cast<double>(stress[L]);
+    Mat<3, double> sigma = elastic_predictor(sigma_n, inc.rotation, inc.strain, law.K, law.mu);
+    double eps_p = plastic_strain ? double(plastic_strain[L]) : 0.0;
+    double deps_p = 0.0;
+    if (law.kind == LawKind::j2) deps_p = j2_radial_return(sigma, eps_p, law.j2);
+    const double D_n = damage ? double(damage[L]) : 0.0;
+    double Dm = D_n;
+    if (damage) Dm = update_damage(law.damage, D_n, eps_p, deps_p, sigma, dt > 0.0 ? deps_p / dt : 0.0);
+    // Cell map and volumes (rkpm.md 4.1, 3.2).
+    const Mat<D, double> F_n = cast<double>(cell_map[L]);
+    Mat<D, double> F = (Mat<D, double>::identity() + Ln) * F_n;
+    if (condition_number<D>(F) > recell_condition) F = recell<D>(F);
+    const double V0 = double(initial_volume[L]);
+    const double V_mid = 0.5 * (det(F_n) + det(F)) * V0;
+    // Internal work 1/2 (sigma_n + sigma_n+1):Deps V_n+1/2 (rkpm.md 4.2), nominal stresses.
+    const Mat<3, double> nominal_n = damage ? nominal_stress(sigma_n, D_n, law.damage) : sigma_n;
+    const Mat<3, double> nominal = damage ? nominal_stress(sigma, Dm, law.damage) : sigma;
+    double work = 0.5 * ddot(nominal_n + nominal, inc.strain) * V_mid;
+    if (plastic_work && deps_p > 0.0) plastic_work[L] += Real(von_mises(sigma) * deps_p * V_mid);
+    if (stress_gradient) {
+      // rkpm.md 4.5: sigma^(i) <- sum_e Q_ie Q sigma^(e) Q^T + c_s C:Deps^(i)
+      const Mat<D, double> Q = in_plane<D>(inc.rotation);
+      Mat<D, double> rotated[D];
+      for (int e = 0; e < D; ++e) rotated[e] = mul_transposed(Q * cast<double>(stress_gradient[L].g[e]), Q);
+      // Theta = J F Theta0 F^T, Theta0_kk = V0 (lo_k^3 + hi_k^3)/(3 l_k) (rkpm.md 3.5)
+      const Mat<D, double> Fm = box_cells ? box_map<D>(F) : F;
+      Mat<D, double> theta0 = Mat<D, double>::zero();
+      for (int k = 0; k < D; ++k) {
+        const double lo = double(cell_lo[L].v[k]), hi = double(cell_hi[L].v[k]);
+        theta0.m[k][k] = V0 * (lo * lo * lo + hi * hi * hi) / (3.0 * (lo + hi));
+      }
+      const Mat<D, double> theta = mul_transposed(Fm * theta0, Fm) * det(Fm);
+      const double scale = damage ? (is_failed(Dm, law.damage) ? 0.0 : 1.0 - Dm) : 1.0;
+      Mat<D, double> next[D];
+      for (int i = 0; i < D; ++i) {
+        next[i] = elastic_stress<D>(de[i], law.K, law.mu) * nsni_scale;
+        for (int e = 0; e < D; ++e) next[i] += rotated[e] * Q.m[i][e];
+        stress_gradient[L].g[i] = cast<Real>(next[i]);
+      }
+      for (int i = 0; i < D; ++i) {
+        Mat<D, double> tau = Mat<D, double>::zero();
+        for (int j = 0; j < D; ++j) tau += next[j] * (theta.m[i][j] * scale);
+        // The stabilization's work, 1/2 (tau_n + tau_n+1):Deps^(i) (rkpm.md 3.5).
+        work += 0.5 * ddot(cast<double>(nsni_stress[L].g[i]) + tau, de[i]);
+        nsni_stress[L].g[i] = cast<Real>(tau);
+      }
+    }
+    internal_work[L] += Real(work);
+    cell_map[L] = cast<Real>(F);
+    stress[L] = cast<Real>(sigma);
+    if (plastic_strain) plastic_strain[L] = Real(eps_p);
+    if (damage) damage[L] = Real(Dm);
+  }
+};
+
+}  // namespace mfsd::rkpm
