@@ -68,6 +68,7 @@ inline constexpr const char* singular = "singular";                    // singul
 inline constexpr const char* node_operator = "node_operator";          // faces and RK coefficients
 inline constexpr const char* implicit_gradient = "implicit_gradient";  // NSNI data
 inline constexpr const char* operator_status = "operator_status";      // regularized / failed points
+inline constexpr const char* nearest = "nearest";  // distance to the nearest node (time step)
 inline constexpr const char* reach = "reach";                          // a + cell reach
 inline constexpr const char* effective_stress = "effective_stress";    // sigma_bar, 3 x 3
 inline constexpr const char* stress_gradient = "stress_gradient";      // NSNI sigma^(i)

@@ -119,6 +119,8 @@ const char* to_string(MaterialModel m) {
       return "j2_mandel";
     case MaterialModel::holzapfel_ogden:
       return "holzapfel_ogden";
+    case MaterialModel::drucker_prager:
+      return "drucker_prager";
     case MaterialModel::linear_elastic:
       return "linear_elastic";
   }

@@ -16,7 +16,15 @@ namespace mfsd {
 // hyperelastic (TLSPH). j2 is J2 plasticity in either method: multiplicative
 // on neo-Hookean elasticity in TLSPH (seed 000), hypo-elastic with the radial
 // return in ULSPH (seed 002 eq. 9-12).
-enum class MaterialModel { neo_hookean, saint_venant_kirchhoff, j2, j2_mandel, holzapfel_ogden, linear_elastic };
+enum class MaterialModel {
+  neo_hookean,
+  saint_venant_kirchhoff,
+  j2,
+  j2_mandel,
+  holzapfel_ogden,
+  linear_elastic,
+  drucker_prager  // RKPM (rkpm.md 4.4): hypo-elastic Drucker-Prager with a tension cut-off
+};
 enum class HardeningLaw { linear, saturation, herschel_bulkley };
 // The solution method of a body (bodies[].method; solver.method is the default).
 enum class Method { tlsph, ulsph, rkpm };
@@ -66,6 +74,27 @@ struct HolzapfelOgdenSpec {
   ActiveStressSpec active;
 };
 
+// Drucker-Prager of RKPM bodies (rkpm.md 4.4): the cone from a Mohr-Coulomb
+// cohesion and friction angle by one of the matches, a dilation angle
+// (= friction: associative) and the mean-stress cut-off p <= T.
+enum class ConeMatch { plane_strain, outer, inner };
+struct DruckerPragerSpec {
+  double cohesion = 0;        // c, Pa
+  double friction_angle = 0;  // phi, degrees
+  double dilation_angle = 0;  // psi, degrees (potential beta from psi by the same match)
+  double tension_cutoff = 0;  // T, Pa; 0: none (the apex k/alpha bounds p)
+  ConeMatch match = ConeMatch::plane_strain;
+};
+// Ductile damage of RKPM J2 bodies (rkpm.md 4.3): sigma = (1 - D) sigma_bar.
+enum class DamageModel { none, linear, exponential, johnson_cook };
+struct DamageSpec {
+  DamageModel law = DamageModel::none;
+  double onset_strain = 0;    // eps_D (linear, exponential)
+  double failure_strain = 1;  // eps_f (linear)
+  double decay_strain = 1;    // eps_r (exponential)
+  double d1 = 0, d2 = 0, d3 = 0, d4 = 0, reference_rate = 1;  // johnson_cook
+};
+
 struct MaterialSpec {
   MaterialModel model = MaterialModel::neo_hookean;
   double density = 0;
@@ -87,8 +116,12 @@ struct MaterialSpec {
   // j2_mandel (seed 001 eq. 32-52): the same elasticity and linear hardening,
   // seed 001's return on C_p with the Mandel stress (j2_return_mapping.hpp).
   FractureSpec fracture;
+  DruckerPragerSpec drucker_prager;  // model drucker_prager
+  DamageSpec damage;                 // RKPM j2 bodies
   HolzapfelOgdenSpec holzapfel_ogden;  // model holzapfel_ogden (density, and E and nu derived from a and K)
-  bool plastic() const { return model == MaterialModel::j2 || model == MaterialModel::j2_mandel; }
+  bool plastic() const {
+    return model == MaterialModel::j2 || model == MaterialModel::j2_mandel || model == MaterialModel::drucker_prager;
+  }
 };
 
 struct BodySpec {
@@ -228,6 +261,7 @@ struct RkpmSpec {
   double damping = 0;            // alpha_d of C = alpha_d M, 1/s (seed 004 eq. 29)
   double skin = 0.15;            // r_skin / dp of the neighbour list (rkpm.md 2)
   bool singular_kernel = true;   // on nodes of essential conditions (rkpm.md 1.7, 6)
+  bool nearest_time_step = false;  // time_step: support (h0 J^(1/d)) | nearest (also <= the nearest node)
 };
 
 struct SolverSpec {

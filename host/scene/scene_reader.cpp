@@ -126,11 +126,13 @@ void read_holzapfel_ogden(JsonNode& m, MaterialSpec& spec, int dim) {
 MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std::string>& warnings) {
   MaterialSpec spec;
   const std::string model = m.choice(
-      "model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel", "holzapfel_ogden", "linear_elastic"});
+      "model", {"neo_hookean", "saint_venant_kirchhoff", "j2", "j2_mandel", "holzapfel_ogden", "linear_elastic",
+                "drucker_prager"});
   spec.model = model == "neo_hookean"       ? MaterialModel::neo_hookean
                : model == "linear_elastic"  ? MaterialModel::linear_elastic
                : model == "j2"              ? MaterialModel::j2
                : model == "j2_mandel"       ? MaterialModel::j2_mandel
+               : model == "drucker_prager"  ? MaterialModel::drucker_prager
                : model == "holzapfel_ogden" ? MaterialModel::holzapfel_ogden
                                             : MaterialModel::saint_venant_kirchhoff;
   spec.density = m.number("density", Range::positive());
@@ -144,6 +146,46 @@ MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std:
   if (auto f = m.optional_object("fracture")) spec.fracture = read_fracture(*f, spec, spacing, dim, warnings);
   // Tension failure of ULSPH bodies (seed 002 section 5.9): -p above it fails a particle.
   spec.failure_pressure = m.number("failure_pressure", 0.0, Range::non_negative());
+  if (spec.model == MaterialModel::drucker_prager) {
+    DruckerPragerSpec& d = spec.drucker_prager;
+    d.cohesion = m.number("cohesion", Range::positive());
+    d.friction_angle = m.number("friction_angle", 0.0, Range{0.0, 60.0, true, false, "an angle in [0, 60) degrees"});
+    d.dilation_angle =
+        m.number("dilation_angle", d.friction_angle,
+                 Range{0.0, d.friction_angle, true, true, "an angle in [0, friction_angle] degrees"});
+    d.tension_cutoff = m.number("tension_cutoff", 0.0, Range::non_negative());
+    const std::string match =
+        m.choice("cone_match", {"plane_strain", "outer", "inner"}, dim == 2 ? "plane_strain" : "outer");
+    d.match = match == "plane_strain" ? ConeMatch::plane_strain
+              : match == "outer"      ? ConeMatch::outer
+                                      : ConeMatch::inner;
+    m.finish();
+    return spec;
+  }
+  if (spec.model == MaterialModel::j2) {
+    if (auto d = m.optional_object("damage")) {
+      DamageSpec& g = spec.damage;
+      const std::string law = d->choice("law", {"linear", "exponential", "johnson_cook"});
+      g.law = law == "linear" ? DamageModel::linear : law == "exponential" ? DamageModel::exponential
+                                                                           : DamageModel::johnson_cook;
+      if (g.law != DamageModel::johnson_cook) g.onset_strain = d->number("onset_strain", 0.0, Range::non_negative());
+      if (g.law == DamageModel::linear) {
+        g.failure_strain = d->number("failure_strain", Range::positive());
+        if (g.failure_strain <= g.onset_strain)
+          throw SceneError(d->key_path("failure_strain"), std::to_string(g.failure_strain),
+                           "a strain above onset_strain (" + std::to_string(g.onset_strain) + ")");
+      }
+      if (g.law == DamageModel::exponential) g.decay_strain = d->number("decay_strain", Range::positive());
+      if (g.law == DamageModel::johnson_cook) {
+        g.d1 = d->number("d1", Range::any());
+        g.d2 = d->number("d2", 0.0, Range::any());
+        g.d3 = d->number("d3", 0.0, Range::any());
+        g.d4 = d->number("d4", 0.0, Range::any());
+        g.reference_rate = d->number("reference_rate", 1.0, Range::positive());
+      }
+      d->finish();
+    }
+  }
   if (spec.plastic()) {
     spec.yield_stress = m.number("yield_stress", Range::positive());
     spec.hardening_modulus = m.number("hardening_modulus", 0.0, Range::non_negative());
@@ -201,14 +243,17 @@ void check_body_properties(const BodySpec& body, const SolverSpec& solver, int d
 // family; neither takes the other's.
 void check_method_material(const BodySpec& body, const SolverSpec& solver, const std::string& path) {
   const MaterialSpec& m = body.material;
+  if (m.damage.law != DamageModel::none && solver.method != Method::rkpm)
+    throw SceneError(path + "/damage", std::string("damage with solver.method \"") + to_string(solver.method) + "\"",
+                     "solver.method \"rkpm\" (SPH bodies fail by phase-field fracture or tension failure)");
   if (solver.method == Method::rkpm) {
     // RKPM's stress update is hypo-elastic (Hughes-Winget, seed 004 eq. 25-26).
-    const bool ok = m.model == MaterialModel::linear_elastic ||
+    const bool ok = m.model == MaterialModel::linear_elastic || m.model == MaterialModel::drucker_prager ||
                     (m.model == MaterialModel::j2 && m.hardening == HardeningLaw::linear);
     if (!ok)
       throw SceneError(path + "/model", std::string("\"") + to_string(m.model) + "\" with solver.method \"rkpm\"",
-                       "\"linear_elastic\" or \"j2\" with linear hardening (the hypo-elastic laws of seed 004 "
-                       "section 7; hyperelastic models need solver.method \"tlsph\")");
+                       "\"linear_elastic\", \"j2\" with linear hardening or \"drucker_prager\" (the hypo-elastic "
+                       "laws of seed 004 section 7; hyperelastic models need solver.method \"tlsph\")");
     if (m.fracture.enabled)
       throw SceneError(path + "/fracture", "phase-field fracture with solver.method \"rkpm\"",
                        "solver.method \"tlsph\"");
@@ -225,6 +270,8 @@ void check_method_material(const BodySpec& body, const SolverSpec& solver, const
       throw SceneError(path + "/fracture", "phase-field fracture with solver.method \"ulsph\"",
                        "solver.method \"tlsph\" (ULSPH bodies fail by tension: material.failure_pressure)");
   } else {
+    if (m.model == MaterialModel::drucker_prager)
+      throw SceneError(path + "/model", "\"drucker_prager\" with solver.method \"tlsph\"", "solver.method \"rkpm\"");
     if (m.model == MaterialModel::linear_elastic)
       throw SceneError(path + "/model", "\"linear_elastic\" with solver.method \"tlsph\"",
                        "a hyperelastic model (neo_hookean, saint_venant_kirchhoff, ...), or solver.method \"ulsph\" "
@@ -283,6 +330,7 @@ SolverSpec read_rkpm_solver(JsonNode& s, SolverSpec spec, int dim) {
   r.skin = k.number("skin", 0.15, Range{0.0, 1.0, true, false, "a number in (0, 1] (times the spacing)"});
   r.singular_kernel =
       k.choice("essential_boundary", {"singular_kernel", "nodal"}, "singular_kernel") == "singular_kernel";
+  r.nearest_time_step = k.choice("time_step", {"support", "nearest"}, "support") == "nearest";
   k.finish();
   s.finish();
   return spec;

@@ -41,6 +41,7 @@ struct ForceFunctor {
   bool row_sum_mass;
   double alpha_d;  // C = alpha_d M (seed 004 eq. 29)
   double dt;       // 0 at set-up: masses only
+  Vec<D, Real>* internal_force = nullptr;  // f_int (out) where given (tests: stiffness by differences)
 
   MFSD_HD Mat<D, double> nominal(Index L) const {
     const Mat<3, double> s = cast<double>(stress[L]);
@@ -89,6 +90,7 @@ struct ForceFunctor {
     // rkpm.md 3.4: xi_I = (B_I - g_I)/w_I; f_I = f~_I + S_I xi_I.
     if (correct && math::fabs(w) >= kCorrectionWeightFloor * m / double(density0[I])) f += S * ((B - g) * (1.0 / w));
     if (!row_sum_mass || !(M >= kMassFloor * m)) M = m;
+    if (internal_force) internal_force[I] = cast<Real>(f);
     lumped_mass[I] = Real(M);
     lumped_volume[I] = Real(M / double(density0[I]));
     if (!(dt > 0.0)) return;

@@ -74,6 +74,7 @@ struct OperatorFunctor {
   NodeOperator<D, Real>* op;
   ImplicitGradient<D, Real>* nsni;  // null: SNNI only
   Real* reach;                      // a_L + max_f |xbar_f - x_L|, for the list's skin
+  Real* nearest;                    // the distance to the nearest other node of row L (time step)
   unsigned char* status;  // bits: 1 a point regularized or Shepard, 2 a point failed, 4 fewer than d + 1 kernels
 
   MFSD_HD void operator()(Index L) const {
@@ -95,6 +96,12 @@ struct OperatorFunctor {
     reach[L] = Real(aL + r_max);
     const PairRow row = rows.row(L);
     unsigned char flags = 0;
+    double r2_min = INFINITY;
+    for (Index k = 0; k < row.count; ++k) {
+      const Index I = rows.neighbor[row.at(k)];
+      if (I != L) r2_min = math::min(r2_min, squared_norm(cast<double>(xL - nodes.position[I])));
+    }
+    nearest[L] = Real(math::sqrt(r2_min));
     for (int p = 0; p < NodeOperator<D, Real>::kPoints; ++p) {
       const Vec<D, double> to_point = p < 2 * D ? faces.offset[p] : Vec<D, double>::zero();
       MomentSum<D> ms, regular;  // regular: the regular kernels' moments where a singular one covers the point

@@ -62,8 +62,9 @@ struct StepStatsFunctor {
   const Vec<D, Real>* build_position;  // x at the list's build
   const Mat<D, Real>* cell_map;
   const Real* support;
-  const Real* reach;  // a + r
-  double h0;          // the body's spacing
+  const Real* reach;    // a + r
+  const Real* nearest;  // distance to the nearest node; null: h0 J^(1/d) alone
+  double h0;            // the body's spacing
   double slowness;    // sqrt(rho0 / (lambda + 2 mu))
   double dt;
   Vec<D, Real> lower, upper;  // scene bounds
@@ -77,8 +78,13 @@ struct StepStatsFunctor {
     bool ok = math::isfinite(v2) && J > 0.0;
     for (int k = 0; k < D; ++k) ok = ok && x.v[k] >= lower.v[k] && x.v[k] <= upper.v[k];  // false for NaN
     if (!ok) return StepStats<Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), i};
-    // rkpm.md 5.3: h_L = h0 J^(1/d), c_L = sqrt((lambda + 2 mu)/rho_L), rho_L = rho0/J
-    const double step = h0 * math::pow(J, 1.0 / D) * slowness / math::sqrt(J);
+    // rkpm.md 5.3: h_L = h0 J^(1/d), c_L = sqrt((lambda + 2 mu)/rho_L), rho_L = rho0/J;
+    // with solver.rkpm.time_step "nearest", h_L no more than the distance to
+    // the nearest node: a node cloud flattened by plastic flow (J ~ 1) has
+    // its spacing, not h0, along the compressed direction (docs/theory.md).
+    double h = h0 * math::pow(J, 1.0 / D);
+    if (nearest) h = math::min(h, double(nearest[i]));
+    const double step = h * slowness / math::sqrt(J);
     const Real a = support[i];
     return StepStats<Real>{v2, squared_norm(x + v * Real(dt) - build_position[i]), a, reach[i] - a, Real(step), n};
   }

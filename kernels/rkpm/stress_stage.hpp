@@ -107,7 +107,18 @@ struct StressFunctor {
     Mat<3, double> sigma = elastic_predictor(sigma_n, inc.rotation, inc.strain, law.K, law.mu);
     double eps_p = plastic_strain ? double(plastic_strain[L]) : 0.0;
     double deps_p = 0.0;
-    if (law.kind == LawKind::j2) deps_p = j2_radial_return(sigma, eps_p, law.j2);
+    double plastic_power = 0.0;  // sigma:Deps_p of the step
+    if (law.kind == LawKind::j2) {
+      deps_p = j2_radial_return(sigma, eps_p, law.j2);
+      plastic_power = von_mises(sigma) * deps_p;
+    } else if (law.kind == LawKind::drucker_prager) {
+      const DruckerPragerReturn r = drucker_prager_return(sigma, law.dp);
+      // rkpm.md 4.4: Deps_p = dgamma s/(2 q_bar) + deps_pv I/3, so sigma:Deps_p =
+      // q_bar dgamma + p deps_pv; the equivalent plastic strain grows by dgamma/sqrt(3).
+      deps_p = r.dgamma / math::sqrt(3.0);
+      eps_p += deps_p;
+      plastic_power = sqrt_j2(sigma) * r.dgamma + mean_stress(sigma) * r.deps_pv;
+    }
     const double D_n = damage ? double(damage[L]) : 0.0;
     double Dm = D_n;
     if (damage) Dm = update_damage(law.damage, D_n, eps_p, deps_p, sigma, dt > 0.0 ? deps_p / dt : 0.0);
@@ -121,7 +132,7 @@ struct StressFunctor {
     const Mat<3, double> nominal_n = damage ? nominal_stress(sigma_n, D_n, law.damage) : sigma_n;
     const Mat<3, double> nominal = damage ? nominal_stress(sigma, Dm, law.damage) : sigma;
     double work = 0.5 * ddot(nominal_n + nominal, inc.strain) * V_mid;
-    if (plastic_work && deps_p > 0.0) plastic_work[L] += Real(von_mises(sigma) * deps_p * V_mid);
+    if (plastic_work) plastic_work[L] += Real(plastic_power * V_mid);
     if (stress_gradient) {
       // rkpm.md 4.5: sigma^(i) <- sum_e Q_ie Q sigma^(e) Q^T + c_s C:Deps^(i)
       const Mat<D, double> Q = in_plane<D>(inc.rotation);

@@ -263,7 +263,7 @@ struct HostOperators {
   std::vector<Index> neighbor;
   std::vector<NodeOperator<D, double>> op;
   std::vector<ImplicitGradient<D, double>> nsni;
-  std::vector<double> reach;
+  std::vector<double> reach, nearest;
   std::vector<unsigned char> status;
 
   explicit HostOperators(std::vector<VecD<D>> nodes, double support)
@@ -288,6 +288,7 @@ struct HostOperators {
     op.resize(n);
     nsni.resize(n);
     reach.assign(n, 0.0);
+    nearest.assign(n, 0.0);
     status.assign(n, 0xff);
     OperatorFunctor<D, double> f;
     f.rows = PairList<D, double>{offsets.data(), neighbor.data(), nullptr, nullptr, nullptr, nullptr};
@@ -301,6 +302,7 @@ struct HostOperators {
     f.op = op.data();
     f.nsni = nsni.data();
     f.reach = reach.data();
+    f.nearest = nearest.data();
     f.status = status.data();
     for (Index L = 0; L < n; ++L) f(L);
   }

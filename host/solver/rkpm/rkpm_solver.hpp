@@ -266,6 +266,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     }
     particles_.template add<unsigned char>(field::operator_status);
     particles_.template add<Real>(field::reach);
+    particles_.template add<Real>(field::nearest);
     particles_.template add<Mat<3, Real>>(field::effective_stress);
     particles_.template add<Real>(field::internal_work);
     particles_.template add<Real>(field::von_mises);
@@ -276,6 +277,8 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       particles_.template add<Real>(field::plastic_strain);
       particles_.template add<Real>(field::plastic_work);
     }
+    for (const auto& b : scene_.bodies)
+      if (b.material.damage.law != DamageModel::none) particles_.template add<Real>(field::damage);
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       search_.push_back(BodySearch{ranges_[b], 0.0});
       build_reach_.push_back(0.0);
@@ -395,7 +398,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
                         particles_.template get<Vec<D, Real>>(field::cell_hi), spec_.cells == SmoothingCells::box, mode,
                         spec_.regularization, particles_.template get<Op>(field::node_operator),
                         spec_.nsni ? particles_.template get<Grad>(field::implicit_gradient) : nullptr,
-                        real(field::reach), particles_.template get<unsigned char>(field::operator_status)});
+                        real(field::reach), real(field::nearest), particles_.template get<unsigned char>(field::operator_status)});
   }
 
   // Nodes whose operator status has `bit` (set-up checks and report).
@@ -415,7 +418,36 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       l.kind = rkpm::LawKind::j2;
       l.j2 = rkpm::J2Hardening{l.mu, m.yield_stress, m.hardening_modulus};
     }
+    if (m.model == MaterialModel::drucker_prager) {
+      // rkpm.md 4.4: the Mohr-Coulomb match of the cone and of the potential.
+      const DruckerPragerSpec& d = m.drucker_prager;
+      const double deg = M_PI / 180.0;
+      auto cone = [&](double angle) {
+        return d.match == ConeMatch::plane_strain ? rkpm::mohr_coulomb_plane_strain(angle * deg, d.cohesion)
+               : d.match == ConeMatch::outer      ? rkpm::mohr_coulomb_outer_cone(angle * deg, d.cohesion)
+                                                  : rkpm::mohr_coulomb_inner_cone(angle * deg, d.cohesion);
+      };
+      const rkpm::DruckerPragerMatch f = cone(d.friction_angle), g = cone(d.dilation_angle);
+      l.kind = rkpm::LawKind::drucker_prager;
+      l.dp = rkpm::DruckerPragerCone{l.K, l.mu, f.alpha_bar, g.alpha_bar, f.k,
+                                     d.tension_cutoff > 0 ? d.tension_cutoff : double(INFINITY)};
+    }
+    l.damage = damage_law(b);
     return l;
+  }
+
+  rkpm::DamageLaw damage_law(size_t b) const {
+    const DamageSpec& d = scene_.bodies[b].material.damage;
+    switch (d.law) {
+      case DamageModel::linear:
+        return rkpm::DamageLaw::linear(d.onset_strain, d.failure_strain);
+      case DamageModel::exponential:
+        return rkpm::DamageLaw::exponential(d.onset_strain, d.decay_strain);
+      case DamageModel::johnson_cook:
+        return rkpm::DamageLaw::johnson_cook(d.d1, d.d2, d.d3, d.d4, d.reference_rate);
+      default:
+        return rkpm::DamageLaw{};
+    }
   }
 
   void stress(size_t b, double dt) {
@@ -482,6 +514,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
                                       particles_.template get<Mat<D, Real>>(field::cell_map),
                                       real(field::support),
                                       real(field::reach),
+                                      spec_.nearest_time_step ? real(field::nearest) : nullptr,
                                       scene_.bodies[b].spacing,
                                       std::sqrt(scene_.bodies[b].material.density / (p.K + 4.0 * p.G / 3.0)),
                                       dt,
