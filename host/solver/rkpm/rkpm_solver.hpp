@@ -212,6 +212,12 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     std::vector<Real> mass(N), rho0(N);
     std::vector<Vec<D, Real>> lo(N), hi(N);
     std::vector<unsigned char> surface(N, 0), singular(N, 0);
+    // Nodes on essential boundaries (rkpm.md 6): clamped, or selected by a
+    // velocity condition; ids are still indices here (before the sort).
+    std::vector<unsigned char> essential(init_.constrained.begin(), init_.constrained.end());
+    for (size_t c = 0; c < scene_.conditions.size() && c < init_.condition_particles.size(); ++c)
+      if (scene_.conditions[c].type == ConditionSpec::Type::velocity)
+        for (long id : init_.condition_particles[c].ids) essential[size_t(id)] = 1;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       const BodySpec& body = scene_.bodies[b];
       const double dp = body.spacing, full = std::pow(dp, D);
@@ -221,7 +227,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
         mass[k] = Real(body.material.density * V0);
         rho0[k] = Real(body.material.density);
         surface[k] = init_.surface.empty() ? 0 : init_.surface[k];
-        singular[k] = spec_.singular_kernel && init_.constrained[k] ? 1 : 0;
+        singular[k] = spec_.singular_kernel && essential[k] ? 1 : 0;
         // The node's initial cell (rkpm.md 3.2): a full box of the lattice,
         // or, for a smaller volume, clipped to 0 on the exposed sides.
         const bool clipped = std::abs(V0 - full) > 1e-9 * full;
