@@ -88,7 +88,7 @@ struct ForceFunctor {
     }
     const double m = double(nodal_mass[I]);
     // rkpm.md 3.4: xi_I = (B_I - g_I)/w_I; f_I = f~_I + S_I xi_I.
-    if (correct && math::fabs(w) >= kCorrectionWeightFloor * m / double(density0[I])) f += S * ((B - g) * (1.0 / w));
+    if (correct && math::fabs(w) >= kCorrectionWeightFloor * double(op[I].volume)) f += S * ((B - g) * (1.0 / w));
     if (!row_sum_mass || !(M >= kMassFloor * m)) M = m;
     if (internal_force) internal_force[I] = cast<Real>(f);
     lumped_mass[I] = Real(M);
