@@ -21,6 +21,7 @@ RESULTS = os.path.join(BENCH, "results")
 BENDING = "configs/bending_column_3d.json"
 PLATE = "configs/oscillating_plate_2d.json"
 PLATE_ULSPH = "configs/oscillating_plate_ulsph_2d.json"
+PLATE_RKPM = "configs/oscillating_plate_rkpm_2d.json"
 TWISTING = "configs/twisting_column_3d.json"
 QUIET_OUTPUT = {"output.vtu": "false", "output.interval": 1e9, "output.probe_interval": 1e9}
 

@@ -61,7 +61,7 @@ def throughput_cases(full=False):
     """[(case, scene, H/dp, precision)] of the throughput suite (quick unless full)."""
     bench = os.path.join(ROOT, "bench")
     consts, _ = _literal_assignments(os.path.join(bench, "bench_lib.py"),
-                                     {"BENDING", "PLATE", "PLATE_ULSPH", "TWISTING"}, {})
+                                     {"BENDING", "PLATE", "PLATE_ULSPH", "PLATE_RKPM", "TWISTING"}, {})
 
     class B:  # stands for `import bench_lib as b`
         pass

@@ -25,10 +25,18 @@ CASES = [  # (label, scene, H/dp)
     ("ULSPH oscillating plate 2D", b.PLATE_ULSPH, 10),
     ("ULSPH oscillating plate 2D", b.PLATE_ULSPH, 20),
     ("ULSPH oscillating plate 2D", b.PLATE_ULSPH, 40),
+    ("RKPM oscillating plate 2D", b.PLATE_RKPM, 10),
+    ("RKPM oscillating plate 2D", b.PLATE_RKPM, 20),
+    ("RKPM oscillating plate 2D", b.PLATE_RKPM, 40),
 ]
-QUICK = [c for c in CASES if c[2] in (12, 24, 20, 40) or c[0].startswith("ULSPH")]
+QUICK = [c for c in CASES if c[2] in (12, 24, 20, 40) or c[0].startswith(("ULSPH", "RKPM"))]
 # The stages whose shares the table shows, per method.
-SHARES = {"tlsph": ("force", "deformation_rate", "stress"), "ulsph": ("force", "neighbors", "half_step", "stress")}
+SHARES = {"tlsph": ("force", "deformation_rate", "stress"), "ulsph": ("force", "neighbors", "half_step", "stress"),
+          "rkpm": ("operators", "stress", "force", "neighbors")}
+
+
+def method(scene):
+    return "ulsph" if scene == b.PLATE_ULSPH else "rkpm" if scene == b.PLATE_RKPM else "tlsph"
 
 
 def timed_steps(particles):
@@ -44,8 +52,10 @@ def main(args):
             continue
         for precision in ("double", "float"):
             for t in threads:
-                hourglass = "gnog" if scene == b.PLATE_ULSPH else "genog"
-                sets = {"constants.H_over_dp": res, "solver.hourglass": hourglass, **b.QUIET_OUTPUT,
+                # RKPM has no hourglass control (and refuses the key).
+                hourglass = {"ulsph": {"solver.hourglass": "gnog"}, "rkpm": {}}.get(method(scene),
+                                                                                  {"solver.hourglass": "genog"})
+                sets = {"constants.H_over_dp": res, **hourglass, **b.QUIET_OUTPUT,
                         **(TWIST_SETS if scene == b.TWISTING else {})}
                 out = os.path.join(b.OUT, "throughput", f"{os.path.basename(scene)[:-5]}_{res}_{precision}_{t}")
                 # Size the run from a one-step probe of the particle count.
@@ -65,18 +75,20 @@ def main(args):
                     "peak_memory_bytes_per_particle": rss / timing["particles"],
                     "model_bytes_per_particle": timing["bytes_per_particle"],
                     "setup_seconds": timing["setup_seconds"],
+                    "mean_dt": timing["simulated_time"] / max(timing["steps"], 1),
                 })
     md = ["| case | H/dp | particles | nbrs | precision | threads | M particle-steps/s | ns per pair-step | ms/step | "
           "stage shares | peak memory [B/particle] |", "|" + "---|" * 11]
     for r in rows:
         s = r["stages"]
-        keys = SHARES["ulsph" if r["scene"] == b.PLATE_ULSPH else "tlsph"]
+        keys = SHARES[method(r["scene"])]
         share = ", ".join(f"{k} {100 * s[k]['share']:.0f} %" for k in keys if k in s)
         md.append(f"| {r['case']} | {r['H_over_dp']} | {r['particles']} | {r['neighbors_per_particle']:.1f} | "
                   f"{r['precision']} | {r['threads'] or 'gpu'} | {b.mega(r['particle_steps_per_second']):.2f} | "
                   f"{pair_ns(r):.2f} | "
                   f"{r['microseconds_per_step'] / 1e3:.2f} | {share} | {r['peak_memory_bytes_per_particle']:.0f} |")
     md += targets(rows, threads[-1])
+    md += methods(rows, threads[-1])
     speedups = []
     if len(threads) > 1:
         md += ["", f"Speed-up from 1 to {threads[-1]} threads:", "",
@@ -96,6 +108,28 @@ def main(args):
     md.append(f"![throughput]({os.path.basename(stem)}.png)\n")
     b.write_results("throughput", {"machine": args.machine, "rows": rows, "speedups": speedups},
                     "\n".join(md) + "\n", args.command)
+
+
+def methods(rows, threads):
+    """The three methods on the same case (the oscillating plate, issue 23
+    item 7): cost per node-step, time step and wall time per simulated
+    second, and RKPM's shape-function rebuild (the `operators` stage)."""
+    out = ["", f"The methods on the oscillating plate 2D, double, {threads} threads (TLSPH genog, ULSPH gnog, "
+           "RKPM SNNI + VC + NSNI; each scene's own resolution of dp, CFL and h):", "",
+           "| method | H/dp | particles | nbrs | M node-steps/s | ns/node-step | mean dt [us] | "
+           "wall s per simulated s | RKPM shape-function rebuild |", "|" + "---|" * 9]
+    for res in (10, 20, 40):
+        for r in rows:
+            if "oscillating plate" not in r["case"] or r["H_over_dp"] != res or r["precision"] != "double" \
+                    or r["threads"] != threads:
+                continue
+            share = r["stages"].get("operators", {}).get("share")
+            dt = r.get("mean_dt", 0)
+            wall = r["microseconds_per_step"] * 1e-6 / dt if dt else float("nan")
+            out.append(f"| {method(r['scene'])} | {res} | {r['particles']} | {r['neighbors_per_particle']:.1f} | "
+                       f"{b.mega(r['particle_steps_per_second']):.2f} | {1e9 / r['particle_steps_per_second']:.0f} | "
+                       f"{1e6 * dt:.2f} | {wall:.1f} | {'' if share is None else f'{100 * share:.0f} %'} |")
+    return out
 
 
 def pair_ns(r):
@@ -129,8 +163,9 @@ def targets(rows, threads):
 
 def plot(rows, threads, path):
     plt = b.plt()
-    fig, axes = plt.subplots(1, 3, figsize=(16, 4))
-    for ax, label in zip(axes, ("bending column 3D", "oscillating plate 2D", "ULSPH oscillating plate 2D")):
+    fig, axes = plt.subplots(1, 4, figsize=(21, 4))
+    for ax, label in zip(axes, ("bending column 3D", "oscillating plate 2D", "ULSPH oscillating plate 2D",
+                                "RKPM oscillating plate 2D")):
         sub = [r for r in rows if r["case"] == label]
         sizes = sorted({r["particles"] for r in sub})
         configs = [(p, t) for p in ("double", "float") for t in threads]

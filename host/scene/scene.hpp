@@ -89,9 +89,9 @@ struct DruckerPragerSpec {
 enum class DamageModel { none, linear, exponential, johnson_cook };
 struct DamageSpec {
   DamageModel law = DamageModel::none;
-  double onset_strain = 0;    // eps_D (linear, exponential)
-  double failure_strain = 1;  // eps_f (linear)
-  double decay_strain = 1;    // eps_r (exponential)
+  double onset_strain = 0;                                    // eps_D (linear, exponential)
+  double failure_strain = 1;                                  // eps_f (linear)
+  double decay_strain = 1;                                    // eps_r (exponential)
   double d1 = 0, d2 = 0, d3 = 0, d4 = 0, reference_rate = 1;  // johnson_cook
 };
 
@@ -116,8 +116,8 @@ struct MaterialSpec {
   // j2_mandel (seed 001 eq. 32-52): the same elasticity and linear hardening,
   // seed 001's return on C_p with the Mandel stress (j2_return_mapping.hpp).
   FractureSpec fracture;
-  DruckerPragerSpec drucker_prager;  // model drucker_prager
-  DamageSpec damage;                 // RKPM j2 bodies
+  DruckerPragerSpec drucker_prager;    // model drucker_prager
+  DamageSpec damage;                   // RKPM j2 bodies
   HolzapfelOgdenSpec holzapfel_ogden;  // model holzapfel_ogden (density, and E and nu derived from a and K)
   bool plastic() const {
     return model == MaterialModel::j2 || model == MaterialModel::j2_mandel || model == MaterialModel::drucker_prager;
@@ -252,15 +252,16 @@ struct RkpmSpec {
   double support_factor = 2.0;         // a~: a_I = a~ h0 J^(1/d) (rkpm.md 1.2)
   bool nsni = true;                    // integration: snni | nsni (rkpm.md 3.5)
   double nsni_scale = 1.0;             // c_s, the NSNI stiffness scale (studies only)
+  bool nsni_tangent = false;            // nsni_moduli: tangent (of the return mapping) | elastic (rkpm.md 4.5)
   bool variational_correction = true;  // VC of the test gradient (rkpm.md 3.4)
   QuasiLinear quasi_linear = QuasiLinear::regularize;
   double regularization = 1e-3;  // tau of the quasi-linear regularizer (rkpm.md 1.6)
   SmoothingCells cells = SmoothingCells::mapped;
-  double recell_condition = 10;  // kappa_max: re-cell when cond(F_cell) exceeds it
-  bool row_sum_mass = true;      // mass: row_sum | nodal (rkpm.md 3.3)
-  double damping = 0;            // alpha_d of C = alpha_d M, 1/s (seed 004 eq. 29)
-  double skin = 0.15;            // r_skin / dp of the neighbour list (rkpm.md 2)
-  bool singular_kernel = true;   // on nodes of essential conditions (rkpm.md 1.7, 6)
+  double recell_condition = 10;    // kappa_max: re-cell when cond(F_cell) exceeds it
+  bool row_sum_mass = true;        // mass: row_sum | nodal (rkpm.md 3.3)
+  double damping = 0;              // alpha_d of C = alpha_d M, 1/s (seed 004 eq. 29)
+  double skin = 0.15;              // r_skin / dp of the neighbour list (rkpm.md 2)
+  bool singular_kernel = true;     // on nodes of essential conditions (rkpm.md 1.7, 6)
   bool nearest_time_step = false;  // time_step: support (h0 J^(1/d)) | nearest (also <= the nearest node)
 };
 

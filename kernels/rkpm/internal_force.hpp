@@ -39,8 +39,8 @@ struct ForceFunctor {
   Vec<D, Real> gravity;
   bool variational_correction;
   bool row_sum_mass;
-  double alpha_d;  // C = alpha_d M (seed 004 eq. 29)
-  double dt;       // 0 at set-up: masses only
+  double alpha_d;                          // C = alpha_d M (seed 004 eq. 29)
+  double dt;                               // 0 at set-up: masses only
   Vec<D, Real>* internal_force = nullptr;  // f_int (out) where given (tests: stiffness by differences)
 
   MFSD_HD Mat<D, double> nominal(Index L) const {
@@ -94,12 +94,16 @@ struct ForceFunctor {
     lumped_mass[I] = Real(M);
     lumped_volume[I] = Real(M / double(density0[I]));
     if (!(dt > 0.0)) return;
-    // M a = f_ext - f_int - alpha_d M v, implicit in the damping (rkpm.md 5.1).
-    const Vec<D, double> a = cast<double>(gravity) - f * (1.0 / M);
+    // M a = f_ext - f_int - alpha_d M v (rkpm.md 5.1), the damping on the
+    // step's start velocity: then the reaction a velocity condition computes
+    // from the velocity change, M (v_bar - v_n)/dt - M a, is exactly
+    // f_int - f_ext + alpha_d M v (rkpm.md 6); the implicit form's
+    // 1/(1 + alpha_d dt/2) would scale it (stable for alpha_d dt < 2, and
+    // alpha_d = 2 omega_1 is far below the CFL's omega_max).
     const Vec<D, double> v0 = cast<double>(velocity[I]);
-    const double c = 0.5 * alpha_d * dt;
-    const Vec<D, double> v1 = (v0 * (1.0 - c) + a * dt) * (1.0 / (1.0 + c));
-    if (alpha_d > 0.0) damping_work[I] += Real(alpha_d * M * dot(0.5 * (v0 + v1), 0.5 * (v0 + v1)) * dt);
+    const Vec<D, double> a = cast<double>(gravity) - f * (1.0 / M) - v0 * alpha_d;
+    const Vec<D, double> v1 = v0 + a * dt;
+    if (alpha_d > 0.0) damping_work[I] += Real(alpha_d * M * dot(v0, 0.5 * (v0 + v1)) * dt);
     velocity[I] = cast<Real>(v1);
     acceleration[I] = cast<Real>((v1 - v0) * (1.0 / dt));
   }

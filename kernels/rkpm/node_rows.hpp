@@ -65,7 +65,7 @@ struct StepStatsFunctor {
   const Real* reach;    // a + r
   const Real* nearest;  // distance to the nearest node; null: h0 J^(1/d) alone
   double h0;            // the body's spacing
-  double slowness;    // sqrt(rho0 / (lambda + 2 mu))
+  double slowness;      // sqrt(rho0 / (lambda + 2 mu))
   double dt;
   Vec<D, Real> lower, upper;  // scene bounds
   Index n;

@@ -41,12 +41,40 @@ MFSD_HD inline Mat<D, double> in_plane(const Mat<3, double>& A) {
   return r;
 }
 
-// C:e for an in-plane (plane strain) or 3-D strain: lambda tr(e) I + 2 mu e.
-template <int D>
-MFSD_HD inline Mat<D, double> elastic_stress(const Mat<D, double>& e, double K, double mu) {
-  Mat<D, double> s = e * (2.0 * mu);
-  s.add_diagonal((K - 2.0 * mu / 3.0) * trace(e));
-  return s;
+// The moduli of the NSNI stress-gradient update (rkpm.md 4.5, switch
+// `nsni_moduli`): elastic, or the tangent of the step's return mapping,
+//   C:e = K tr(e) I + 2 mu_perp (dev e - (n:e) n) + 2 mu_flow (n:e) n,
+// n the unit deviatoric flow direction. J2 radial return: mu_perp = mu theta,
+// theta = 1 - 3 mu deps_p / q_tr, mu_flow = mu H/(3 mu + H) (Simo & Hughes
+// 1998, the consistent tangent). Drucker-Prager: on the cone mu_perp =
+// mu q_bar/q_bar_tr, mu_flow = 0 (perfectly plastic; the dilatant coupling of
+// p and q is left out), at the cut-off K = 0, at the corner also
+// mu_perp = mu q_cap/q_bar_tr, at the apex all 0. With the elastic moduli
+// sigma^(i) keeps growing where the material flows: a footing on perfectly
+// plastic soil then never reaches a limit load (docs/theory.md).
+struct GradientModuli {
+  double K, mu_perp, mu_flow;
+  Mat<3, double> n;                // unit deviatoric direction (zero where unused)
+  double deviatoric_return = 1.0;  // s = theta s_tr of the return: applied to the gradients' deviators too
+  MFSD_HD static GradientModuli elastic(double K, double mu) {
+    return GradientModuli{K, mu, mu, Mat<3, double>::zero(), 1.0};
+  }
+  template <int D>
+  MFSD_HD Mat<D, double> apply(const Mat<D, double>& e) const {
+    Mat<3, double> e3 = Mat<3, double>::zero();
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) e3.m[a][b] = e.m[a][b];  // plane strain: e_33 = 0
+    const double ne = ddot(n, e3);
+    Mat<3, double> s = (deviator(e3) - n * ne) * (2.0 * mu_perp) + n * (2.0 * mu_flow * ne);
+    s.add_diagonal(K * trace(e3));
+    return in_plane<D>(s);
+  }
+};
+
+MFSD_HD inline Mat<3, double> unit_deviator(const Mat<3, double>& sigma) {
+  const Mat<3, double> s = deviator(sigma);
+  const double norm_s = math::sqrt(ddot(s, s));
+  return norm_s > 0.0 ? s * (1.0 / norm_s) : Mat<3, double>::zero();
 }
 
 template <int D, class Real>
@@ -68,7 +96,8 @@ struct StressFunctor {
   Real* internal_work;                       // J, accumulated
   Real* plastic_work;                        // J, accumulated (null: elastic)
   StressLaw law;
-  double nsni_scale;  // c_s
+  double nsni_scale;    // c_s
+  bool tangent_moduli;  // NSNI stress gradients with the return's tangent (else elastic)
   double recell_condition;
   bool box_cells;
   double dt;
@@ -108,11 +137,27 @@ struct StressFunctor {
     double eps_p = plastic_strain ? double(plastic_strain[L]) : 0.0;
     double deps_p = 0.0;
     double plastic_power = 0.0;  // sigma:Deps_p of the step
+    GradientModuli moduli = GradientModuli::elastic(law.K, law.mu);
     if (law.kind == LawKind::j2) {
+      const double q_tr = von_mises(sigma);
+      const Mat<3, double> n = unit_deviator(sigma);
       deps_p = j2_radial_return(sigma, eps_p, law.j2);
       plastic_power = von_mises(sigma) * deps_p;
+      if (deps_p > 0.0 && tangent_moduli)
+        moduli = GradientModuli{law.K, law.mu * (1.0 - 3.0 * law.mu * deps_p / q_tr),
+                                law.mu * law.j2.hardening / (3.0 * law.mu + law.j2.hardening), n,
+                                1.0 - 3.0 * law.mu * deps_p / q_tr};
     } else if (law.kind == LawKind::drucker_prager) {
+      const double q_tr = sqrt_j2(sigma);
+      const Mat<3, double> n = unit_deviator(sigma);
       const DruckerPragerReturn r = drucker_prager_return(sigma, law.dp);
+      if (tangent_moduli && r.branch != DpBranch::elastic) {
+        const double ratio = q_tr > 0.0 ? sqrt_j2(sigma) / q_tr : 0.0;
+        const bool cone = r.branch == DpBranch::cone;
+        const bool cutoff = r.branch == DpBranch::tension_cutoff;
+        moduli = GradientModuli{cone ? law.K : 0.0, cutoff ? law.mu : law.mu * ratio, cutoff ? law.mu : 0.0, n,
+                                cutoff ? 1.0 : ratio};
+      }
       // rkpm.md 4.4: Deps_p = dgamma s/(2 q_bar) + deps_pv I/3, so sigma:Deps_p =
       // q_bar dgamma + p deps_pv; the equivalent plastic strain grows by dgamma/sqrt(3).
       deps_p = r.dgamma / math::sqrt(3.0);
@@ -149,8 +194,14 @@ struct StressFunctor {
       const double scale = damage ? (is_failed(Dm, law.damage) ? 0.0 : 1.0 - Dm) : 1.0;
       Mat<D, double> next[D];
       for (int i = 0; i < D; ++i) {
-        next[i] = elastic_stress<D>(de[i], law.K, law.mu) * nsni_scale;
+        next[i] = moduli.apply<D>(de[i]) * nsni_scale;
         for (int e = 0; e < D; ++e) next[i] += rotated[e] * Q.m[i][e];
+        if (moduli.deviatoric_return < 1.0) {  // the return's radial scaling, also on the gradients
+          const double p = trace(next[i]) / D;
+          next[i].add_diagonal(-p);
+          next[i] *= moduli.deviatoric_return;
+          next[i].add_diagonal(p);
+        }
         stress_gradient[L].g[i] = cast<Real>(next[i]);
       }
       for (int i = 0; i < D; ++i) {

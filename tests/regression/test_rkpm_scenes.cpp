@@ -14,7 +14,11 @@
 // Copper Taylor bar (configs/taylor_bar_rkpm_3d.json at R0/dp = 4, J2
 // linear hardening, 227 m/s, 80 us): the final length against the
 // published FE band 21.4-21.7 mm (rkpm.md 7.6; a tracked metric at this
-// resolution) and the energy balance of the impact.
+// resolution) and the energy balance of the impact. Measured: L_f = 21.19 mm,
+// largest radius 5.09 mm (FE band 7.0-7.2 mm: not reached at this
+// resolution), balance 254.9 J from 251.1 J (+1.5 %).
+// Measured at the plate: T = 0.27558 s, energy drift 2.9e-4; spinning plate:
+// L changes by 1.3e-3 in 0.1 s.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,8 +40,9 @@ double angular_momentum(const Snapshot& s, const std::vector<double>& mass) {
 }  // namespace
 
 TEST(RkpmOscillatingPlate, PeriodAndEnergyAtCiResolution) {
+  // One thread: ctest runs two tests at once on two cores.
   auto t = test::run_config("oscillating_plate_rkpm_2d.json", {"solver.end_time=0.29"}, Precision::double_precision, 0,
-                            500);
+                            500, 1);
   std::vector<double> y;
   for (const auto& p : t.probes) y.push_back(p[0].position[1]);
   const double T = test::oscillation_period(t.time, y);
@@ -52,7 +57,8 @@ TEST(RkpmOscillatingPlate, PeriodAndEnergyAtCiResolution) {
 }
 
 TEST(RkpmSpinningPlate, AngularMomentumIsKept) {
-  auto t = test::run_config("spinning_plate_rkpm_2d.json", {"solver.end_time=0.1"}, Precision::double_precision, 0, 0);
+  auto t =
+      test::run_config("spinning_plate_rkpm_2d.json", {"solver.end_time=0.1"}, Precision::double_precision, 0, 0, 1);
   // Nodal masses m = rho0 dp^2 (the lattice's full cells): the measure of L.
   const Snapshot s1 = t.solver->snapshot();
   const std::vector<double> m(s1.n, 1100.0 * 0.05 * 0.05);
@@ -63,15 +69,15 @@ TEST(RkpmSpinningPlate, AngularMomentumIsKept) {
   EXPECT_LT(std::abs(e.momentum[0]) + std::abs(e.momentum[1]), 1e-8 * L0);
   // The lattice's discrete polar moment is (1 - dp^2/side^2 / ... ) below the
   // continuum's: compare with the start of the same run instead.
-  auto t0 = test::run_config("spinning_plate_rkpm_2d.json", {"solver.end_time=1e-9"}, Precision::double_precision, 0,
-                             0);
+  auto t0 =
+      test::run_config("spinning_plate_rkpm_2d.json", {"solver.end_time=1e-9"}, Precision::double_precision, 0, 0, 1);
   const double Ls = angular_momentum(t0.solver->snapshot(), m);
   EXPECT_LT(std::abs(L1 / Ls - 1), 2e-3) << "L(0) = " << Ls << ", L(0.1 s) = " << L1 << ", continuum " << L0;
   std::printf("RKPM spinning plate: L(0) = %.6g, L(0.1 s) = %.6g (relative change %.3g)\n", Ls, L1, L1 / Ls - 1);
 }
 
 TEST(RkpmTaylorBar, FinalLengthAtCiResolution) {
-  auto t = test::run_config("taylor_bar_rkpm_3d.json", {"constants.R_over_dp=4"}, Precision::double_precision, 0, 0);
+  auto t = test::run_config("taylor_bar_rkpm_3d.json", {"constants.R_over_dp=4"}, Precision::double_precision, 0, 0, 1);
   const Snapshot s = t.solver->snapshot();
   double top = 0, radius = 0;
   for (size_t i = 0; i < s.n; ++i) {

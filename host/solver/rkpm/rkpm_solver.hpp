@@ -397,14 +397,15 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     const int mode = spec_.quasi_linear == QuasiLinear::regularize ? 0
                      : spec_.quasi_linear == QuasiLinear::shepard  ? 1
                                                                    : 2;
-    parallel_for<B>(particles_.size(),
-                    rkpm::OperatorFunctor<D, Real>{
-                        rows(), nodes(), particles_.template get<Mat<D, Real>>(field::cell_map),
-                        particles_.template get<Vec<D, Real>>(field::cell_lo),
-                        particles_.template get<Vec<D, Real>>(field::cell_hi), spec_.cells == SmoothingCells::box, mode,
-                        spec_.regularization, particles_.template get<Op>(field::node_operator),
-                        spec_.nsni ? particles_.template get<Grad>(field::implicit_gradient) : nullptr,
-                        real(field::reach), real(field::nearest), particles_.template get<unsigned char>(field::operator_status)});
+    parallel_for<B>(
+        particles_.size(),
+        rkpm::OperatorFunctor<D, Real>{
+            rows(), nodes(), particles_.template get<Mat<D, Real>>(field::cell_map),
+            particles_.template get<Vec<D, Real>>(field::cell_lo),
+            particles_.template get<Vec<D, Real>>(field::cell_hi), spec_.cells == SmoothingCells::box, mode,
+            spec_.regularization, particles_.template get<Op>(field::node_operator),
+            spec_.nsni ? particles_.template get<Grad>(field::implicit_gradient) : nullptr, real(field::reach),
+            real(field::nearest), particles_.template get<unsigned char>(field::operator_status)});
   }
 
   // Nodes whose operator status has `bit` (set-up checks and report).
@@ -435,8 +436,8 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       };
       const rkpm::DruckerPragerMatch f = cone(d.friction_angle), g = cone(d.dilation_angle);
       l.kind = rkpm::LawKind::drucker_prager;
-      l.dp = rkpm::DruckerPragerCone{l.K, l.mu, f.alpha_bar, g.alpha_bar, f.k,
-                                     d.tension_cutoff > 0 ? d.tension_cutoff : double(INFINITY)};
+      l.dp = rkpm::DruckerPragerCone{l.K,         l.mu, f.alpha_bar,
+                                     g.alpha_bar, f.k,  d.tension_cutoff > 0 ? d.tension_cutoff : double(INFINITY)};
     }
     l.damage = damage_law(b);
     return l;
@@ -476,6 +477,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
                                    plastic ? real(field::plastic_work) : nullptr,
                                    law(b),
                                    spec_.nsni_scale,
+                                   spec_.nsni_tangent,
                                    spec_.recell_condition,
                                    spec_.cells == SmoothingCells::box,
                                    dt};
