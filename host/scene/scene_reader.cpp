@@ -316,7 +316,7 @@ SolverSpec read_rkpm_solver(JsonNode& s, SolverSpec spec, int dim) {
   r.nsni = k.choice("integration", {"nsni", "snni"}, "nsni") == "nsni";
   r.nsni_scale = k.number("nsni_scale", 1.0, Range{0.0, 4.0, false, false, "a number in [0, 4] (1: the paper's)"});
   // rkpm.md 4.5: elastic by default. The tangent lowers the footing's load
-  // (12.2 c -> 8.1 c against 5.14 c) but lets the Taylor bar's plastic zone
+  // (12.6 c -> 8.1 c against 5.14 c) but lets the Taylor bar's plastic zone
   // lose its stabilization and blow up at 18 us (docs/theory.md).
   r.nsni_tangent = k.choice("nsni_moduli", {"elastic", "tangent"}, "elastic") == "tangent";
   r.variational_correction = k.boolean("variational_correction", true);
