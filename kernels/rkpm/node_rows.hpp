@@ -35,7 +35,7 @@ struct RowFillFunctor {
   }
 };
 
-template <class Real>
+template <int D, class Real>
 struct StepStats {
   Real max_speed2;
   Real max_drift2;  // |x + dt v - x_build|^2: the next step's position against the list's
@@ -43,14 +43,25 @@ struct StepStats {
   Real max_cell_reach;  // max_f |xbar_f - x_L|
   Real min_dt;          // CFL-free stable step h/c
   Index first_bad;      // smallest index of a non-finite or escaped node, or n
+  Vec<D, Real> lo, hi;  // the body's box (the next search's grid, without a round trip)
 };
 
-template <class Real>
+template <int D, class Real>
 struct StepStatsCombine {
-  MFSD_HD StepStats<Real> operator()(const StepStats<Real>& a, const StepStats<Real>& b) const {
-    return StepStats<Real>{math::max(a.max_speed2, b.max_speed2),   math::max(a.max_drift2, b.max_drift2),
-                           math::max(a.max_support, b.max_support), math::max(a.max_cell_reach, b.max_cell_reach),
-                           math::min(a.min_dt, b.min_dt),           math::min(a.first_bad, b.first_bad)};
+  MFSD_HD StepStats<D, Real> operator()(const StepStats<D, Real>& a, const StepStats<D, Real>& b) const {
+    StepStats<D, Real> r{math::max(a.max_speed2, b.max_speed2),
+                         math::max(a.max_drift2, b.max_drift2),
+                         math::max(a.max_support, b.max_support),
+                         math::max(a.max_cell_reach, b.max_cell_reach),
+                         math::min(a.min_dt, b.min_dt),
+                         math::min(a.first_bad, b.first_bad),
+                         a.lo,
+                         a.hi};
+    for (int k = 0; k < D; ++k) {
+      r.lo.v[k] = math::min(a.lo.v[k], b.lo.v[k]);
+      r.hi.v[k] = math::max(a.hi.v[k], b.hi.v[k]);
+    }
+    return r;
   }
 };
 
@@ -70,14 +81,14 @@ struct StepStatsFunctor {
   Vec<D, Real> lower, upper;  // scene bounds
   Index n;
 
-  MFSD_HD StepStats<Real> operator()(Index i) const {
+  MFSD_HD StepStats<D, Real> operator()(Index i) const {
     const Vec<D, Real> v = velocity[i];
     const Vec<D, Real> x = reference_position[i] + displacement[i];
     const double J = double(det(cell_map[i]));
     const Real v2 = squared_norm(v);
     bool ok = math::isfinite(v2) && J > 0.0;
     for (int k = 0; k < D; ++k) ok = ok && x.v[k] >= lower.v[k] && x.v[k] <= upper.v[k];  // false for NaN
-    if (!ok) return StepStats<Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), i};
+    if (!ok) return StepStats<D, Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), i, lower, upper};
     // rkpm.md 5.3: h_L = h0 J^(1/d), c_L = sqrt((lambda + 2 mu)/rho_L), rho_L = rho0/J;
     // with solver.rkpm.time_step "nearest", h_L no more than the distance to
     // the nearest node: a node cloud flattened by plastic flow (J ~ 1) has
@@ -86,7 +97,8 @@ struct StepStatsFunctor {
     if (nearest) h = math::min(h, double(nearest[i]));
     const double step = h * slowness / math::sqrt(J);
     const Real a = support[i];
-    return StepStats<Real>{v2, squared_norm(x + v * Real(dt) - build_position[i]), a, reach[i] - a, Real(step), n};
+    return StepStats<D, Real>{v2, squared_norm(x + v * Real(dt) - build_position[i]), a, reach[i] - a, Real(step), n, x,
+                              x};
   }
 };
 

@@ -71,6 +71,16 @@ TEST(RoundTrips, OnePerStepInEveryScene) {
     // The process-wide count and the solver's own (timing.json's) agree.
     // A scene of both methods: one per solver (the contact between them travels with the ULSPH solver's).
     const long expected = kSteps * (mixed ? 2 : 1) + (ulsph ? 2 * (kSteps - 1) : 0);
+    if (given.solver.method == Method::rkpm) {
+      // RKPM rebuilds its list when the skin is used up (not every step): two
+      // more per rebuild (the grids' upload, the count's scan), at most one
+      // rebuild per step after the first.
+      const long extra = round_trips() - before - kSteps;
+      EXPECT_TRUE(extra >= 0 && extra % 2 == 0 && extra <= 2 * (kSteps - 1)) << extra;
+      EXPECT_EQ(solver->timers().round_trips(), round_trips() - before);
+      ++scenes_run;
+      continue;
+    }
     EXPECT_EQ(round_trips() - before, expected);
     EXPECT_EQ(solver->timers().round_trips(), expected);
     ++scenes_run;

@@ -140,18 +140,18 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     const Kinematics<D, Real> k = this->kinematics();
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
-    std::vector<ResultSlot<rkpm::StepStats<Real>>> slots;
+    std::vector<ResultSlot<rkpm::StepStats<D, Real>>> slots;
     run("advance", [&] {
       parallel_for<B>(n, rkpm::DriftFunctor<D, Real>{velocity(), displacement(), increment(), Real(0.5 * dt)});
       for (size_t b = 0; b < scene_.bodies.size(); ++b)
         slots.push_back(results_.reduce(ranges_[b].begin, ranges_[b].end, stats_functor(b, dt), stats_init(),
-                                        rkpm::StepStatsCombine<Real>{}));
+                                        rkpm::StepStatsCombine<D, Real>{}));
     });
     run("time_step", [&] {
       results_.fetch();
       conditions_.collect(results_, k);
       contact_.collect(results_);
-      std::vector<rkpm::StepStats<Real>> stats;
+      std::vector<rkpm::StepStats<D, Real>> stats;
       for (auto& s : slots) stats.push_back(results_.get(s));
       time_ += dt;
       ++steps_;
@@ -300,15 +300,28 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     for (size_t b = 0; b < search_.size(); ++b) {
       const BodyRange r = ranges_[b];
       const double dp = scene_.bodies[b].spacing;
-      const Real a_max = transform_reduce<B>(r.begin, r.end, MaxOf{real(field::support)}, Real(0), MaxReal{});
-      // Cell reach: the last operators' (at set-up, the initial cells' half diagonal bound).
-      const double r_max = steps_ == 0 && !reorder_done_ ? 0.5 * dp * std::sqrt(double(D)) : cell_reach_max(b);
-      build_reach_[b] = double(a_max) + r_max;
+      // In a run the last step's reduction has the box and the largest
+      // support and cell reach (no round trip: the list's only ones are the
+      // grids' upload and the count's scan); at set-up they are reduced here.
+      double a_max, r_max;
+      BoundingBox<D, Real> box;
+      if (last_stats_.size() == search_.size()) {
+        const rkpm::StepStats<D, Real>& s = last_stats_[b];
+        a_max = double(s.max_support);
+        r_max = double(s.max_cell_reach);
+        box = BoundingBox<D, Real>{s.lo, s.hi};
+        const Real margin = Real(0.5 * this->step_dt_ * std::sqrt(double(s.max_speed2)));  // the half drift since
+        for (int k = 0; k < D; ++k) box.lo.v[k] -= margin, box.hi.v[k] += margin;
+      } else {
+        a_max = double(transform_reduce<B>(r.begin, r.end, MaxOf{real(field::support)}, Real(0), MaxReal{}));
+        r_max = 0.5 * dp * std::sqrt(double(D));  // the initial cells' half diagonal bounds their reach
+        box = transform_reduce<B>(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
+                                  BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{});
+      }
+      // The supports grow with J after the reduction, by far less than the skin.
+      build_reach_[b] = a_max + r_max;
       const double radius = build_reach_[b] + spec_.skin * dp;
       search_[b].smoothing_length = 0.5 * radius;
-      const BoundingBox<D, Real> box =
-          transform_reduce<B>(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
-                              BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{});
       double lo[D], hi[D], cell = radius, cells = 1;
       for (int a = 0; a < D; ++a) {
         lo[a] = double(box.lo.v[a]);
@@ -321,11 +334,9 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       first += grids.back().cells;
     }
     sort_into_cells<B, D, Real>(particles_, field::operator_position, grids, reorder, cells_);
-    reorder_done_ = true;
     CellNeighborhood<D, Real> hood = cell_neighborhood<B, D, Real>(particles_, field::operator_position, cells_);
-    count_pairs<B, D, Real>(hood, search_, n, count_, offsets_);
+    pairs_ = count_pairs<B, D, Real>(hood, search_, n, count_, offsets_) + PairIndex(n);  // + each row's node
     parallel_for<B>(n + 1, rkpm::SelfOffsetsFunctor{raw(offsets_)});
-    pairs_ = offsets_[size_t(n)];
     neighbor_.resize(size_t(pairs_) + kPairPrefetchDistance, 0);
     for (const auto& s : search_) {
       hood.radius2 = support_radius2<Real>(s.smoothing_length);
@@ -342,18 +353,9 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   struct MaxReal {
     MFSD_HD Real operator()(Real a, Real b) const { return a > b ? a : b; }
   };
-  struct CellReach {
-    const Real* reach;
-    const Real* support;
-    MFSD_HD Real operator()(Index i) const { return reach[i] - support[i]; }
-  };
-  double cell_reach_max(size_t b) {
-    return double(transform_reduce<B>(ranges_[b].begin, ranges_[b].end,
-                                      CellReach{real(field::reach), real(field::support)}, Real(0), MaxReal{}));
-  }
-
   // Rebuild when 2 drift + growth of a + r > skin (rkpm.md 2).
-  void decide_rebuild(const std::vector<rkpm::StepStats<Real>>& stats) {
+  void decide_rebuild(const std::vector<rkpm::StepStats<D, Real>>& stats) {
+    last_stats_ = stats;
     for (size_t b = 0; b < stats.size(); ++b) {
       const double drift = std::sqrt(double(stats[b].max_drift2));
       const double growth = double(stats[b].max_support) + double(stats[b].max_cell_reach) - build_reach_[b];
@@ -535,19 +537,20 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     }
     return f;
   }
-  rkpm::StepStats<Real> stats_init() const {
-    return rkpm::StepStats<Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), particles_.size()};
+  rkpm::StepStats<D, Real> stats_init() const {
+    const BoundingBox<D, Real> e = BoundingBox<D, Real>::empty();
+    return rkpm::StepStats<D, Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), particles_.size(), e.lo, e.hi};
   }
-  std::vector<rkpm::StepStats<Real>> host_stats(double dt) {
-    std::vector<rkpm::StepStats<Real>> s;
+  std::vector<rkpm::StepStats<D, Real>> host_stats(double dt) {
+    std::vector<rkpm::StepStats<D, Real>> s;
     for (size_t b = 0; b < scene_.bodies.size(); ++b)
       s.push_back(transform_reduce<B>(ranges_[b].begin, ranges_[b].end, stats_functor(b, dt), stats_init(),
-                                      rkpm::StepStatsCombine<Real>{}));
+                                      rkpm::StepStatsCombine<D, Real>{}));
     return s;
   }
 
   // dt = CFL min_L h_L / c_L (rkpm.md 5.3), and the contact's bound.
-  double time_step(const std::vector<rkpm::StepStats<Real>>& stats) {
+  double time_step(const std::vector<rkpm::StepStats<D, Real>>& stats) {
     double dt = std::numeric_limits<double>::infinity();
     for (const auto& s : stats) dt = std::min(dt, double(s.min_dt));
     dt *= scene_.solver.cfl;
@@ -609,8 +612,8 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   long regularized_at_setup_ = 0;
   bool has_loads_ = false;
   bool rebuild_due_ = false;
-  bool reorder_done_ = false;
   std::vector<double> gravity_at_start_;
+  std::vector<rkpm::StepStats<D, Real>> last_stats_;  // per body, of the last step
 };
 
 }  // namespace mfsd
