@@ -41,6 +41,41 @@ struct MoveFunctor {
   }
 };
 
+// MoveFunctor over all bodies, each with its a~ h0 (lengths[body]).
+template <int D, class Real>
+struct MoveAllFunctor {
+  MoveFunctor<D, Real> f;
+  const int* body;
+  const double* lengths;
+  MFSD_HD void operator()(Index i) const {
+    MoveFunctor<D, Real> g = f;
+    g.support_length = lengths[body[i]];
+    g(i);
+  }
+};
+
+// Small reductions of the solver (host/solver/rkpm/): a field's values,
+// their maximum, and m g . u (the gravity's potential).
+template <class Real>
+struct ValueOf {
+  const Real* v;
+  MFSD_HD Real operator()(Index i) const { return v[i]; }
+};
+template <class Real>
+struct MaxOf {
+  MFSD_HD Real operator()(Real a, Real b) const { return a > b ? a : b; }
+};
+struct PlusDouble {
+  MFSD_HD double operator()(double a, double b) const { return a + b; }
+};
+template <int D, class Real>
+struct GravityPotentialFunctor {
+  const Vec<D, Real>* u;
+  const Real* m;
+  Vec<D, Real> g;
+  MFSD_HD double operator()(Index i) const { return double(m[i]) * double(dot(g, u[i])); }
+};
+
 struct EnergySums {
   double kinetic, internal, plastic, damping;
   double momentum[3];

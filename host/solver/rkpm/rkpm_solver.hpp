@@ -313,7 +313,8 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
         const Real margin = Real(0.5 * this->step_dt_ * std::sqrt(double(s.max_speed2)));  // the half drift since
         for (int k = 0; k < D; ++k) box.lo.v[k] -= margin, box.hi.v[k] += margin;
       } else {
-        a_max = double(transform_reduce<B>(r.begin, r.end, MaxOf{real(field::support)}, Real(0), MaxReal{}));
+        a_max = double(transform_reduce<B>(r.begin, r.end, rkpm::ValueOf<Real>{real(field::support)}, Real(0),
+                                           rkpm::MaxOf<Real>{}));
         r_max = 0.5 * dp * std::sqrt(double(D));  // the initial cells' half diagonal bounds their reach
         box = transform_reduce<B>(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
                                   BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{});
@@ -346,13 +347,6 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     thrust::copy(BackendTraits<B>::policy(), x, x + n, particles_.template get<Vec<D, Real>>(field::build_position));
   }
 
-  struct MaxOf {
-    const Real* v;
-    MFSD_HD Real operator()(Index i) const { return v[i]; }
-  };
-  struct MaxReal {
-    MFSD_HD Real operator()(Real a, Real b) const { return a > b ? a : b; }
-  };
   // Rebuild when 2 drift + growth of a + r > skin (rkpm.md 2).
   void decide_rebuild(const std::vector<rkpm::StepStats<D, Real>>& stats) {
     last_stats_ = stats;
@@ -372,23 +366,13 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     return PairList<D, Real>{raw(offsets_), raw(neighbor_), nullptr, nullptr, nullptr, nullptr};
   }
 
-  struct MoveAll {
-    rkpm::MoveFunctor<D, Real> f;
-    const int* body;
-    const double* lengths;
-    MFSD_HD void operator()(Index i) const {
-      rkpm::MoveFunctor<D, Real> g = f;
-      g.support_length = lengths[body[i]];
-      g(i);
-    }
-  };
-  MoveAll move_functor_all() {
+  rkpm::MoveAllFunctor<D, Real> move_functor_all() {
     if (support_lengths_.size() != scene_.bodies.size()) {
       std::vector<double> l;
       for (const auto& b : scene_.bodies) l.push_back(spec_.support_factor * b.spacing);  // a~ h0 (rkpm.md 1.2)
       from_host<B>(l, support_lengths_);
     }
-    return MoveAll{
+    return rkpm::MoveAllFunctor<D, Real>{
         {reference(), displacement(), particles_.template get<Mat<D, Real>>(field::cell_map),
          particles_.template get<Vec<D, Real>>(field::operator_position), increment(), real(field::support), 0.0},
         particles_.template get<int>(field::body),
@@ -568,20 +552,12 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
 
   // sum m g . u with the nodal masses (the gravity's work since the start
   // is its change).
-  struct GravityPotential {
-    const Vec<D, Real>* u;
-    const Real* m;
-    Vec<D, Real> g;
-    MFSD_HD double operator()(Index i) const { return double(m[i]) * double(dot(g, u[i])); }
-  };
-  struct PlusDouble {
-    MFSD_HD double operator()(double a, double b) const { return a + b; }
-  };
   double gravity_potential(size_t b) {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
-    return transform_reduce<B>(ranges_[b].begin, ranges_[b].end, GravityPotential{displacement(), real(field::mass), g},
-                               0.0, PlusDouble{});
+    return transform_reduce<B>(ranges_[b].begin, ranges_[b].end,
+                               rkpm::GravityPotentialFunctor<D, Real>{displacement(), real(field::mass), g}, 0.0,
+                               rkpm::PlusDouble{});
   }
 
   void update_observables() override {
