@@ -8,6 +8,7 @@
 //   largest support a and cell reach r (2 drift + growth > skin).
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/neighbors/bounding_box.hpp"
 #include "kernels/neighbors/cell_list.hpp"
 
 namespace mfsd::rkpm {
@@ -40,10 +41,10 @@ struct StepStats {
   Real max_speed2;
   Real max_drift2;  // |x + dt v - x_build|^2: the next step's position against the list's
   Real max_support;
-  Real max_cell_reach;  // max_f |xbar_f - x_L|
-  Real min_dt;          // CFL-free stable step h/c
-  Index first_bad;      // smallest index of a non-finite or escaped node, or n
-  Vec<D, Real> lo, hi;  // the body's box (the next search's grid, without a round trip)
+  Real max_cell_reach;       // max_f |xbar_f - x_L|
+  Real min_dt;               // CFL-free stable step h/c
+  Index first_bad;           // smallest index of a non-finite or escaped node, or n
+  BoundingBox<D, Real> box;  // the body's box (the next search's grid, without a round trip)
 };
 
 template <int D, class Real>
@@ -55,12 +56,7 @@ struct StepStatsCombine {
                          math::max(a.max_cell_reach, b.max_cell_reach),
                          math::min(a.min_dt, b.min_dt),
                          math::min(a.first_bad, b.first_bad),
-                         a.lo,
-                         a.hi};
-    for (int k = 0; k < D; ++k) {
-      r.lo.v[k] = math::min(a.lo.v[k], b.lo.v[k]);
-      r.hi.v[k] = math::max(a.hi.v[k], b.hi.v[k]);
-    }
+                         BoundingBoxCombine<D, Real>{}(a.box, b.box)};
     return r;
   }
 };
@@ -88,7 +84,9 @@ struct StepStatsFunctor {
     const Real v2 = squared_norm(v);
     bool ok = math::isfinite(v2) && J > 0.0;
     for (int k = 0; k < D; ++k) ok = ok && x.v[k] >= lower.v[k] && x.v[k] <= upper.v[k];  // false for NaN
-    if (!ok) return StepStats<D, Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), i, lower, upper};
+    if (!ok)
+      return StepStats<D, Real>{
+          Real(0), Real(0), Real(0), Real(0), Real(INFINITY), i, BoundingBox<D, Real>{lower, upper}};
     // rkpm.md 5.3: h_L = h0 J^(1/d), c_L = sqrt((lambda + 2 mu)/rho_L), rho_L = rho0/J;
     // with solver.rkpm.time_step "nearest", h_L no more than the distance to
     // the nearest node: a node cloud flattened by plastic flow (J ~ 1) has

@@ -1,6 +1,6 @@
 // The per-node updates of an RKPM step around its gathers (rkpm.md 5.2;
 // host/solver/rkpm/rkpm_solver.hpp): the drifts of the nodes, the move to the
-// new operators' configuration with the supports a = a~ h0 J^(1/d)
+// next operators' configuration with the supports a = a~ h0 J^(1/d)
 // (rkpm.md 1.2), and the energy sums of a body.
 #pragma once
 #include "kernels/rkpm/stress_stage.hpp"
@@ -31,7 +31,7 @@ struct MoveFunctor {
   const Vec<D, Real>* displacement;
   const Mat<D, Real>* cell_map;
   Vec<D, Real>* position;
-  Vec<D, Real>* increment;  // du, zeroed: the new operators' configuration starts
+  Vec<D, Real>* increment;  // du, zeroed: the next operators' configuration starts
   Real* support;
   double support_length;  // a~ h0 of the body
   MFSD_HD void operator()(Index i) const {

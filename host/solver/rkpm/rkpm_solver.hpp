@@ -309,7 +309,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
         const rkpm::StepStats<D, Real>& s = last_stats_[b];
         a_max = double(s.max_support);
         r_max = double(s.max_cell_reach);
-        box = BoundingBox<D, Real>{s.lo, s.hi};
+        box = s.box;
         const Real margin = Real(0.5 * this->step_dt_ * std::sqrt(double(s.max_speed2)));  // the half drift since
         for (int k = 0; k < D; ++k) box.lo.v[k] -= margin, box.hi.v[k] += margin;
       } else {
@@ -523,7 +523,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   }
   rkpm::StepStats<D, Real> stats_init() const {
     const BoundingBox<D, Real> e = BoundingBox<D, Real>::empty();
-    return rkpm::StepStats<D, Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), particles_.size(), e.lo, e.hi};
+    return rkpm::StepStats<D, Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), particles_.size(), e};
   }
   std::vector<rkpm::StepStats<D, Real>> host_stats(double dt) {
     std::vector<rkpm::StepStats<D, Real>> s;
