@@ -26,10 +26,10 @@
 #pragma once
 #include <cstdint>
 
+#include "kernels/bc/step_force.hpp"
 #include "kernels/contact/contact_force.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/neighbors/cell_list.hpp"
-#include "kernels/bc/step_force.hpp"
 
 namespace mfsd {
 
@@ -215,6 +215,21 @@ struct ContactSumsCombine {
     r.power = a.power + b.power;
     for (int k = 0; k < 3; ++k) r.force[k] = a.force[k] + b.force[k];
     return r;
+  }
+};
+
+// The candidates' masses from the method's current volumes, m_c = rho_c
+// V[particle[c]] (a method whose masses change: RKPM's row-sum mass).
+template <class Real>
+struct ContactMassFunctor {
+  Index first;
+  const Index* particle;
+  const Real* density;
+  const Real* volume;
+  Real* mass;
+  MFSD_HD void operator()(Index k) const {
+    const Index c = first + k;
+    mass[c] = density[c] * volume[particle[c]];
   }
 };
 

@@ -74,7 +74,7 @@ class Contact {
     for (size_t r = 0; r < scene.rigid_bodies.size(); ++r) rigid_index[scene.rigid_bodies[r].name] = r;
 
     std::vector<Index> particle;
-    std::vector<Real> mass;
+    std::vector<Real> mass, density;
     std::vector<int> group;
     std::vector<ContactGroup<Real>> groups;
     part_begin_.assign(1, 0);
@@ -85,19 +85,19 @@ class Contact {
         while (lb < P.scene_body.size() && scene.bodies[P.scene_body[lb]].name != name) ++lb;
         if (lb == P.scene_body.size()) continue;  // a body of another part
         const size_t b = P.scene_body[lb];
-        const bool self = !between_parts &&
-                          std::find(spec.self_contact.begin(), spec.self_contact.end(), name) != spec.self_contact.end();
+        const bool self = !between_parts && std::find(spec.self_contact.begin(), spec.self_contact.end(), name) !=
+                                                spec.self_contact.end();
         const double support = 2.0 * P.props[lb].h;
         const double rho = scene.bodies[b].material.density;
         const int g = int(groups.size());
-        groups.push_back(ContactGroup<Real>{Real(scene.bodies[b].spacing),
-                                            Real(rho * P.props[lb].c0 * P.props[lb].c0), Real(support * support),
-                                            self ? 1 : 0, 0, between_parts ? int(q) : g});
+        groups.push_back(ContactGroup<Real>{Real(scene.bodies[b].spacing), Real(rho * P.props[lb].c0 * P.props[lb].c0),
+                                            Real(support * support), self ? 1 : 0, 0, between_parts ? int(q) : g});
         Span s{b, Index(particle.size()), 0, q};
         for (Index p = P.ranges[lb].begin; p < P.ranges[lb].end; ++p) {
           if (!P.near_surface[size_t(p)]) continue;
           particle.push_back(p);
           mass.push_back(Real(rho * double(P.volume[size_t(p)])));
+          density.push_back(Real(rho));
           group.push_back(g);
         }
         s.end = Index(particle.size());
@@ -132,6 +132,7 @@ class Contact {
     from_host<B>(particle, particle_);
     from_host<B>(markers, marker_position_);
     from_host<B>(mass, mass_);
+    from_host<B>(density, density_);
     from_host<B>(group, group_);
     from_host<B>(groups, groups_);
     placement_.resize(rigid_spans_.size());
@@ -141,6 +142,16 @@ class Contact {
     force_.resize(size_t(count_));
     keys_.resize(size_t(count_));
     order_.resize(size_t(count_));
+  }
+
+  // For a method whose masses change (RKPM's row-sum mass): the candidates
+  // of part q take rho V from `volume` (the part's kinematic volumes) now,
+  // so that the contact's forces change the momentum M v by exactly their
+  // impulse. Without it the masses stay rho V of the set-up.
+  void refresh_masses(const Real* volume, size_t q = 0) {
+    if (!enabled_ || q + 1 >= part_begin_.size()) return;
+    const Index first = part_begin_[q], n = part_begin_[q + 1] - first;
+    if (n > 0) parallel_for<B>(n, ContactMassFunctor<Real>{first, raw(particle_), raw(density_), volume, raw(mass_)});
   }
 
   // Contact forces at the half-step positions (t: start of the step); v and a
@@ -171,28 +182,19 @@ class Contact {
     thrust::fill(BackendTraits<B>::policy(), start_.begin(), start_.begin() + cells_, Index(0));
     thrust::fill(BackendTraits<B>::policy(), end_.begin(), end_.begin() + cells_, Index(0));
     parallel_for<B>(count_, CellRangeFunctor{raw(keys_), count_, raw(start_), raw(end_)});
-    const ContactForceFunctor<D, Real> f{grid,
-                                         raw(start_),
-                                         raw(end_),
-                                         raw(order_),
-                                         raw(x_),
-                                         raw(v_),
-                                         raw(X_),
-                                         raw(mass_),
-                                         raw(group_),
-                                         raw(groups_),
-                                         law_,
-                                         Real(stiffness_factor_),
+    const ContactForceFunctor<D, Real> f{grid,        raw(start_),  raw(end_), raw(order_),
+                                         raw(x_),     raw(v_),      raw(X_),   raw(mass_),
+                                         raw(group_), raw(groups_), law_,      Real(stiffness_factor_),
                                          raw(force_)};
     pending_.clear();
     pending_.dt = dt;
     pending_.inverse_step = results.reduce(Index(0), count_, f, Real(0), thrust::maximum<Real>{});
     for (const Span& s : body_spans_)
-      pending_.body.push_back(results.reduce(s.begin, s.end,
-                                             ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_),
-                                                                          Real(dt), views[s.part].velocity,
-                                                                          views[s.part].acceleration},
-                                             ContactSums<Real>::zero(), ContactSumsCombine{}));
+      pending_.body.push_back(
+          results.reduce(s.begin, s.end,
+                         ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_), Real(dt),
+                                                      views[s.part].velocity, views[s.part].acceleration},
+                         ContactSums<Real>::zero(), ContactSumsCombine{}));
     for (const Span& s : rigid_spans_)
       pending_.rigid.push_back(results.reduce(s.begin, s.end, ContactForceSumFunctor<D, Real>{raw(force_)},
                                               ContactSums<Real>::zero(), ContactSumsCombine{}));
@@ -315,6 +317,7 @@ class Contact {
   DeviceVector<B, Index> particle_, order_, start_, end_;
   DeviceVector<B, Vec<D, Real>> marker_position_, x_, v_, X_, force_;
   DeviceVector<B, Real> mass_;
+  DeviceVector<B, Real> density_;  // rho of each candidate (refresh_masses)
   DeviceVector<B, int> group_;
   DeviceVector<B, ContactGroup<Real>> groups_;
   DeviceVector<B, RigidPlacement<D, Real>> placement_;

@@ -131,7 +131,11 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     });
     rebuild_due_ = false;
     run("force", [&] { force(dt); });
-    if (contact_.enabled()) run("contact", [&] { contact_.apply(this->kinematics(), time_, dt, results_); });
+    if (contact_.enabled())
+      run("contact", [&] {
+        contact_.refresh_masses(real(field::lumped_volume));  // M_I of this step's force stage
+        contact_.apply(this->kinematics(), time_, dt, results_);
+      });
   }
 
   void end_step() override {
@@ -464,6 +468,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
                                    law(b),
                                    spec_.nsni_scale,
                                    spec_.nsni_tangent,
+                                   spec_.nsni_consistent,
                                    spec_.recell_condition,
                                    spec_.cells == SmoothingCells::box,
                                    dt};
