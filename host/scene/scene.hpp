@@ -252,7 +252,8 @@ struct RkpmSpec {
   double support_factor = 2.0;         // a~: a_I = a~ h0 J^(1/d) (rkpm.md 1.2)
   bool nsni = true;                    // integration: snni | nsni (rkpm.md 3.5)
   double nsni_scale = 1.0;             // c_s, the NSNI stiffness scale (studies only)
-  bool nsni_tangent = false;            // nsni_moduli: tangent (of the return mapping) | elastic (rkpm.md 4.5)
+  bool nsni_tangent = false;           // nsni_moduli: tangent (of the return mapping) | elastic (rkpm.md 4.5)
+  bool nsni_consistent = false;        // nsni_moduli: consistent (gradients returned to the yield surface's tangent)
   bool variational_correction = true;  // VC of the test gradient (rkpm.md 3.4)
   QuasiLinear quasi_linear = QuasiLinear::regularize;
   double regularization = 1e-3;  // tau of the quasi-linear regularizer (rkpm.md 1.6)

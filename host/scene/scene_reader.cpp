@@ -318,7 +318,9 @@ SolverSpec read_rkpm_solver(JsonNode& s, SolverSpec spec, int dim) {
   // rkpm.md 4.5: elastic by default. The tangent lowers the footing's load
   // (12.6 c -> 8.1 c against 5.14 c) but lets the Taylor bar's plastic zone
   // lose its stabilization and blow up at 18 us (docs/theory.md).
-  r.nsni_tangent = k.choice("nsni_moduli", {"elastic", "tangent"}, "elastic") == "tangent";
+  const std::string moduli = k.choice("nsni_moduli", {"elastic", "tangent", "consistent"}, "elastic");
+  r.nsni_tangent = moduli == "tangent";
+  r.nsni_consistent = moduli == "consistent";
   r.variational_correction = k.boolean("variational_correction", true);
   const std::string q = k.choice("quasi_linear", {"regularize", "shepard", "off"}, "regularize");
   r.quasi_linear = q == "regularize" ? QuasiLinear::regularize

@@ -71,6 +71,40 @@ struct GradientModuli {
   }
 };
 
+// The consistency projection of the NSNI stress gradients (`nsni_moduli:
+// consistent`): where a node flows plastically in the step, its neighbourhood
+// stays on the yield surface f(sigma(x)) = 0, so the stress gradients obey
+// f_sigma : sigma^(i) = 0 (perfect plasticity) and the trial gradients
+// (rotated + C:Deps^(i)) are returned along the plastic flow C:g_sigma:
+//   sigma^(i) <- sigma^(i) - C:g_sigma (f_sigma : sigma^(i)) / (f_sigma:C:g_sigma + H)
+// (the continuum elasto-plastic tangent applied to the whole gradient, not only
+// to its increment: the elastic gradient stored before yield is returned too).
+// J2: f_sigma = sqrt(3/2) n, C:g_sigma = 2 mu sqrt(3/2) n, denominator 3 mu + H
+// (a fraction H/(3 mu + H) of the normal part stays each step: hardening).
+// Drucker-Prager cone: f_sigma = n/sqrt2 + alpha_bar I/3, C:g_sigma =
+// sqrt2 mu n + K beta_bar I, denominator mu + K alpha_bar beta_bar (rkpm.md 4.4);
+// tension cut-off: the mean part removed; apex and corner: all removed. In
+// plane strain the contraction runs over the in-plane components only (the
+// gradient of sigma_33 is not carried; exact where n_33 = 0, e.g. phi = 0 at
+// the limit load). Unlike the return's algorithmic tangent it keeps the
+// gradients orthogonal to the flow, which carry the stabilization.
+struct GradientReturn {
+  enum Mode : int { none, project, zero };
+  int mode = none;
+  Mat<3, double> flow = Mat<3, double>::zero();    // C:g_sigma
+  Mat<3, double> normal = Mat<3, double>::zero();  // f_sigma
+  double inv_denominator = 0.0;
+  template <int D>
+  MFSD_HD void apply(Mat<D, double>& g) const {
+    if (mode == zero) g = Mat<D, double>::zero();
+    if (mode != project) return;
+    double r = 0.0;
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) r += normal.m[a][b] * g.m[a][b];
+    g += in_plane<D>(flow) * (-r * inv_denominator);
+  }
+};
+
 MFSD_HD inline Mat<3, double> unit_deviator(const Mat<3, double>& sigma) {
   const Mat<3, double> s = deviator(sigma);
   const double norm_s = math::sqrt(ddot(s, s));
@@ -96,8 +130,9 @@ struct StressFunctor {
   Real* internal_work;                       // J, accumulated
   Real* plastic_work;                        // J, accumulated (null: elastic)
   StressLaw law;
-  double nsni_scale;    // c_s
-  bool tangent_moduli;  // NSNI stress gradients with the return's tangent (else elastic)
+  double nsni_scale;       // c_s
+  bool tangent_moduli;     // NSNI stress gradients with the return's tangent (else elastic)
+  bool consistent_moduli;  // NSNI stress gradients returned to the yield surface's tangent plane
   double recell_condition;
   bool box_cells;
   double dt;
@@ -138,11 +173,17 @@ struct StressFunctor {
     double deps_p = 0.0;
     double plastic_power = 0.0;  // sigma:Deps_p of the step
     GradientModuli moduli = GradientModuli::elastic(law.K, law.mu);
+    GradientReturn gradient_return;
     if (law.kind == LawKind::j2) {
       const double q_tr = von_mises(sigma);
       const Mat<3, double> n = unit_deviator(sigma);
       deps_p = j2_radial_return(sigma, eps_p, law.j2);
       plastic_power = von_mises(sigma) * deps_p;
+      if (deps_p > 0.0 && consistent_moduli) {  // GradientReturn, J2
+        const double root = math::sqrt(1.5);
+        gradient_return = {GradientReturn::project, n * (2.0 * law.mu * root), n * root,
+                           1.0 / (3.0 * law.mu + law.j2.hardening)};
+      }
       if (deps_p > 0.0 && tangent_moduli)
         moduli = GradientModuli{law.K, law.mu * (1.0 - 3.0 * law.mu * deps_p / q_tr),
                                 law.mu * law.j2.hardening / (3.0 * law.mu + law.j2.hardening), n,
@@ -151,6 +192,19 @@ struct StressFunctor {
       const double q_tr = sqrt_j2(sigma);
       const Mat<3, double> n = unit_deviator(sigma);
       const DruckerPragerReturn r = drucker_prager_return(sigma, law.dp);
+      if (consistent_moduli && r.branch == DpBranch::cone) {  // GradientReturn, Drucker-Prager cone
+        const double root = math::sqrt(2.0);
+        Mat<3, double> flow = n * (root * law.mu), normal = n * (1.0 / root);
+        flow.add_diagonal(law.K * law.dp.beta_bar);
+        normal.add_diagonal(law.dp.alpha_bar / 3.0);
+        gradient_return = {GradientReturn::project, flow, normal,
+                           1.0 / (law.mu + law.K * law.dp.alpha_bar * law.dp.beta_bar)};
+      } else if (consistent_moduli && r.branch == DpBranch::tension_cutoff) {  // p = T: mean part removed
+        gradient_return = {GradientReturn::project, Mat<3, double>::diagonal(law.K),
+                           Mat<3, double>::diagonal(1.0 / 3.0), 1.0 / law.K};
+      } else if (consistent_moduli && r.branch != DpBranch::elastic) {  // apex, corner: the stress is a point
+        gradient_return.mode = GradientReturn::zero;
+      }
       if (tangent_moduli && r.branch != DpBranch::elastic) {
         const double ratio = q_tr > 0.0 ? sqrt_j2(sigma) / q_tr : 0.0;
         const bool cone = r.branch == DpBranch::cone;
@@ -202,6 +256,7 @@ struct StressFunctor {
           next[i] *= moduli.deviatoric_return;
           next[i].add_diagonal(p);
         }
+        gradient_return.apply<D>(next[i]);
         stress_gradient[L].g[i] = cast<Real>(next[i]);
       }
       for (int i = 0; i < D; ++i) {

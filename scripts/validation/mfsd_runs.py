@@ -7,7 +7,10 @@ import subprocess
 import sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-BINARY = os.environ.get("MFSD_BINARY", os.path.join(ROOT, "build", "mfsd"))
+# $MFSD_BINARY, else build/mfsd (scripts/build.sh), else build-cpu/mfsd (a CPU-only build).
+BINARY = os.environ.get("MFSD_BINARY") or next(
+    (p for p in (os.path.join(ROOT, d, "mfsd") for d in ("build", "build-cpu")) if os.path.exists(p)),
+    os.path.join(ROOT, "build", "mfsd"))
 PYTHON_PACKAGES = {"numpy": "numpy", "matplotlib": "matplotlib"}
 
 

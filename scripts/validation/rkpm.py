@@ -16,9 +16,17 @@ behind docs/validation.md "RKPM".
             at the same resolution.
   spinning  spinning plate 2-D (configs/spinning_plate_rkpm_2d.json): angular
             momentum and polar moment over 0.2 s, with and without NSNI.
+  shear     Dienes' simple shear through the whole code
+            (configs/simple_shear_rkpm_2d.json) to gamma = 2 pi with about
+            --res (default 100 400) steps: the middle node's von Mises stress
+            against the Jaumann-rate solution 2 sqrt(3) mu |sin(gamma/2)|
+            (rkpm.md 7.1; Hughes-Winget integrates the Jaumann rate, so it
+            oscillates) and the Green-Naghdi-rate solution (Dienes 1979;
+            monotonic). A drift-kick-drift step evaluates the stress in the
+            mid-step configuration: a row at time t holds gamma(t - dt/2).
 
 Writes docs/validation/rkpm_<study>.json and .png.
-Usage: scripts/validation/rkpm.py plate|taylor|spinning [--res ...] [--threads N] [--reuse]
+Usage: scripts/validation/rkpm.py plate|taylor|spinning|shear [--res ...] [--threads N] [--reuse]
 """
 import os
 import sys
@@ -162,7 +170,57 @@ def spinning(args):
     m.write_study(os.path.join(DOCS, "rkpm_spinning"), result, fig)
 
 
+def green_naghdi_von_mises(gamma, mu):
+    """Simple shear under the Green-Naghdi rate (Dienes 1979): tan b = gamma/2,
+    s11 = -s22 = 4 mu (cos 2b ln cos b + b sin 2b - sin^2 b),
+    s12 = 2 mu cos 2b (2b - 2 tan 2b ln cos b - tan b); q = sqrt(3 (s11^2 + s12^2))."""
+    import math
+    b = math.atan(gamma / 2)
+    s11 = 4 * mu * (math.cos(2 * b) * math.log(math.cos(b)) + b * math.sin(2 * b) - math.sin(b) ** 2)
+    s12 = 2 * mu * math.cos(2 * b) * (2 * b - 2 * math.tan(2 * b) * math.log(math.cos(b)) - math.tan(b))
+    return math.sqrt(3 * (s11 ** 2 + s12 ** 2))
+
+
+def shear(args):
+    import math
+    config = "configs/simple_shear_rkpm_2d.json"
+    result = {"config": config, "machine": m.machine(), "reference": "rkpm.md 7.1; Dienes, Acta Mech. 32 (1979)",
+              "cases": []}
+    fig, ax = plt().subplots(figsize=(7, 4.5))
+    g_ref = [2 * math.pi * k / 400 for k in range(401)]
+    for steps in args.res or [100, 400]:
+        out = os.path.join(OUT, f"shear_{steps}")
+        # dt = CFL h / c: the scene's 0.14 s takes 103 steps; scale t_end for about `steps`.
+        sets = {"constants.t_end": 0.14 * steps / 103, "output.probe_interval": "t_end / 10000"}  # a row every step
+        probes, _, timing = m.run_and_read(config, sets, out, args.threads,
+                                           args.reuse)
+        const = m.read_json(os.path.join(out, "run.json"))["scene"]["constants"]
+        mu = const["E"] / (2 * (1 + const["nu"]))
+        t, q = probes["time"], probes["centre.von_mises"]
+        gam = [const["rate"] * 0.5 * (a + b) for a, b in zip(t, t[1:])]  # mid-step configuration
+        qs = [x / mu for x in q[1:]]
+        err = max(abs(x - 2 * math.sqrt(3) * abs(math.sin(g / 2))) for g, x in zip(gam, qs))
+        case = {"steps": timing.get("steps"), "max_error_over_mu": err, "last_q_over_mu": qs[-1],
+                "last_gamma": gam[-1],
+                "largest_q_over_mu": max(qs), "gamma_of_largest_q": gam[qs.index(max(qs))]}
+        result["cases"].append(case)
+        print(f"{case['steps']} steps: von Mises against the Jaumann solution, largest error {err:.2e} mu; "
+              f"peak {case['largest_q_over_mu']:.4f} mu at gamma {case['gamma_of_largest_q']:.3f}; "
+              f"last row {case['last_q_over_mu']:.2e} mu at gamma {case['last_gamma']:.4f} (2 pi = 6.2832)")
+        ax.plot(gam, qs, "o" if steps == (args.res or [100])[0] else "-", ms=3,
+                label=f"mfsd RKPM, Hughes-Winget, {case['steps']} steps")
+    ax.plot(g_ref, [2 * math.sqrt(3) * abs(math.sin(g / 2)) for g in g_ref], "k--", lw=1,
+            label="Jaumann rate (exact): $2\\sqrt{3}\\,|\\sin(\\gamma/2)|$")
+    ax.plot(g_ref, [green_naghdi_von_mises(g, 1.0) for g in g_ref], "k:", lw=1.5, label="Green-Naghdi rate (exact)")
+    ax.set_xlabel("shear $\\gamma$")
+    ax.set_ylabel("von Mises stress / $\\mu$")
+    ax.set_title("Simple shear of a hypo-elastic block (Dienes 1979)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    m.write_study(os.path.join(DOCS, "rkpm_shear"), result, fig)
+
+
 if __name__ == "__main__":
     study = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else None
     args = m.study_arguments(__doc__, res_help="resolutions (H/dp or R0/dp)")
-    {"plate": plate, "taylor": taylor, "spinning": spinning}.get(study, lambda a: sys.exit(__doc__))(args)
+    {"plate": plate, "taylor": taylor, "spinning": spinning, "shear": shear}.get(study, lambda a: sys.exit(__doc__))(args)

@@ -43,10 +43,6 @@ import math
 import os
 import sys
 
-_ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-if "MFSD_BINARY" not in os.environ and not os.path.exists(os.path.join(_ROOT, "build", "mfsd")):
-    os.environ["MFSD_BINARY"] = os.path.join(_ROOT, "build-cpu", "mfsd")
-
 sys.path.insert(0, os.path.dirname(__file__))
 import mfsd_runs as m  # noqa: E402
 
@@ -66,7 +62,7 @@ def settlement(t, V, t_ramp):
 
 
 def case_key(n, phi, speed, integration):
-    return (f"B{n}_{integration}" + ("" if phi == 0 else f"_phi{phi:g}") +
+    return (f"B{n}_{integration.replace('-', '_')}" + ("" if phi == 0 else f"_phi{phi:g}") +
             ("" if speed == 1 else f"_V{speed:g}x"))
 
 
@@ -110,7 +106,9 @@ def final_field(outdir, dp, s_end):
 
 def run_case(n, phi, speed, integration, threads, reuse):
     outdir = os.path.join(OUT, "rkpm_footing_" + case_key(n, phi, speed, integration))
-    sets = {"constants.B_over_dp": n, "solver.rkpm.integration": integration}
+    sets = {"constants.B_over_dp": n, "solver.rkpm.integration": integration.split("-")[0]}
+    if "-" in integration:  # nsni-tangent, nsni-consistent: solver.rkpm.nsni_moduli
+        sets["solver.rkpm.nsni_moduli"] = integration.split("-")[1]
     if phi:
         sets["bodies.soil.material.friction_angle"] = phi  # dilation_angle defaults to it: associative
     if speed != 1:
@@ -162,8 +160,8 @@ def main():
     def extra(ap):
         ap.add_argument("--phi20", action="store_true", help="also run phi = 20 deg at the coarsest resolution")
         ap.add_argument("--speed", type=float, default=1.0, help="footing speed factor (1: the scene's V)")
-        ap.add_argument("--integration", nargs="*", default=["nsni", "snni"], choices=["nsni", "snni"],
-                        help="solver.rkpm.integration of the runs (default both)")
+        ap.add_argument("--integration", nargs="*", default=["nsni", "snni"], choices=["nsni", "snni", "nsni-elastic", "nsni-tangent", "nsni-consistent"],
+                        help="solver.rkpm.integration of the runs (default nsni and snni; nsni-M sets nsni_moduli M)")
     args = m.study_arguments(__doc__, "resolutions B/dp (default 4 8)", "result stem (default docs/validation/rkpm_footing)",
                              extra)
     import matplotlib
@@ -192,7 +190,7 @@ def main():
               f"{r['roughness_final']:.3f}; {r['particles']} nodes, {r['steps']} steps, "
               f"{r['wall_seconds']:.0f} s on {r['threads']} threads")
         a = ax[0] if phi == 0 else ax[1]
-        a.plot(s, q, "-" if integration == "nsni" else "--",
+        a.plot(s, q, "-" if integration.startswith("nsni") else "--",
                label=f"{integration.upper()}, B/dp = {n}: plateau {r['plateau_q_over_c']:.2f}")
     ax[0].axhline(PRANDTL, color="k", ls="--", lw=1, label="Prandtl (2 + $\\pi$) = 5.14")
     ax[0].axhspan(0.95 * PRANDTL, 1.05 * PRANDTL, color="0.9", zorder=0, label="$\\pm$5 %")

@@ -257,6 +257,7 @@ struct Square {
                                law,
                                1.0,    // nsni_scale
                                true,   // tangent moduli (elastic here: the same)
+                               true,   // consistent moduli (elastic here: the same)
                                1e9,    // recell_condition
                                false,  // mapped cells
                                1.0};   // dt
