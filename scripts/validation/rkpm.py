@@ -2,8 +2,9 @@
 """Semi-Lagrangian RKPM (seed 004, ../shared/reference/rkpm.md 7): the studies
 behind docs/validation.md "RKPM".
 
-  plate     oscillating plate 2-D (configs/oscillating_plate_rkpm_2d.json,
-            v_f = 0.01, SNNI + VC + NSNI, a~ = 2) at H/dp = --res (default
+  plate     oscillating plate 2-D (configs/oscillating_plate_rkpm_2d.json in
+            the shared slot holder and configs/oscillating_plate_clamped_rkpm_2d.json
+            clamped by singular-kernel nodes, v_f = 0.01, SNNI + VC + NSNI, a~ = 2) at H/dp = --res (default
             10 20 40) to two periods: the period against the thin-beam
             T = 0.264 s (rkpm.md 7.5: within 3 % at H/dp = 20 and 40), the
             total-energy drift; and the TLSPH plate (configs/oscillating_plate_2d.json,
@@ -53,10 +54,11 @@ def plate(args):
               "cases": []}
     fig, ax = plt().subplots(1, 2, figsize=(12, 4.5))
     for method, config, sets in (("rkpm", "configs/oscillating_plate_rkpm_2d.json", {}),
+                                 ("rkpm_clamped", "configs/oscillating_plate_clamped_rkpm_2d.json", {}),
                                  ("tlsph genog", "configs/oscillating_plate_2d.json", {"constants.vf": 0.01})):
         periods = []
         for r in res:
-            out = os.path.join(OUT, f"plate_{method.split()[0]}_H{r}")
+            out = os.path.join(OUT, f"plate_{method.split()[0]}_H{r}")  # rkpm, rkpm_clamped, tlsph
             probes, energies, timing = m.run_and_read(
                 config, {"constants.H_over_dp": r, "solver.end_time": 0.56, "output.vtu": "false", **sets}, out,
                 args.threads, args.reuse)
