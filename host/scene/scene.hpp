@@ -250,6 +250,7 @@ enum class QuasiLinear { regularize, shepard, off };  // rkpm.md 1.6
 enum class SmoothingCells { mapped, box };            // rkpm.md 3.2
 struct RkpmSpec {
   double support_factor = 2.0;         // a~: a_I = a~ h0 J^(1/d) (rkpm.md 1.2)
+  bool box_supports = false;           // support_shape: box (tensor-product kernel) | sphere (rkpm.md 1.1)
   bool nsni = true;                    // integration: snni | nsni (rkpm.md 3.5)
   double nsni_scale = 1.0;             // c_s, the NSNI stiffness scale (studies only)
   bool nsni_tangent = false;           // nsni_moduli: tangent (of the return mapping) | elastic (rkpm.md 4.5)

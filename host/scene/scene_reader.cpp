@@ -329,6 +329,7 @@ SolverSpec read_rkpm_solver(JsonNode& s, SolverSpec spec, int dim) {
   r.regularization =
       k.number("regularization", 1e-3, Range{0.0, 0.1, true, false, "a number in (0, 0.1] (1e-3 to 1e-2 advised)"});
   r.cells = k.choice("cells", {"mapped", "box"}, "mapped") == "mapped" ? SmoothingCells::mapped : SmoothingCells::box;
+  r.box_supports = k.choice("support_shape", {"sphere", "box"}, "sphere") == "box";
   r.recell_condition = k.number("recell_condition", 10.0, Range{1.0, 1e6, true, false, "a number in (1, 1e6]"});
   r.row_sum_mass = k.choice("mass", {"row_sum", "nodal"}, "row_sum") == "row_sum";
   r.damping = k.number("damping", 0.0, Range::non_negative());

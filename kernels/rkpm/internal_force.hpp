@@ -60,9 +60,10 @@ struct ForceFunctor {
     for (Index k = 0; k < row.count; ++k) {
       const Index L = rows.neighbor[row.at(k)];
       const NodeOperator<D, Real>& o = op[L];
-      const Vec<D, double> d = cast<double>(nodes.position[L] - xI);                          // x_L - x_I
-      const Vec<D, double> A = smoothed_gradient_volume(o, I, d, aI, singI, surface[L], &B);  // V_L grad~Psi_I(x_L)
-      const double psi = shape_at(o, 2 * D, I, d, aI, singI);                                 // Psi_I(x_L)
+      const Vec<D, double> d = cast<double>(nodes.position[L] - xI);  // x_L - x_I
+      const Vec<D, double> A =
+          smoothed_gradient_volume(o, I, d, aI, singI, nodes.box, surface[L], &B);  // V_L grad~Psi_I(x_L)
+      const double psi = shape_at(o, 2 * D, I, d, aI, singI, nodes.box);            // Psi_I(x_L)
       const Mat<D, double> sigma = nominal(L);
       f += sigma * A;  // eq. 27: V_L sigma_L grad~Psi_I(x_L)
       g += A;
@@ -73,7 +74,7 @@ struct ForceFunctor {
       if (status[L] & 1u) correct = false;
       if (damage && is_failed(double(damage[L]), damage_law)) correct = false;
       if (nsni) {
-        const KernelSample<D> s = kernel<D>(d, aI, false);
+        const KernelSample<D> s = kernel<D>(d, aI, false, nodes.box);
         if (s.w > 0.0) {
           const double inv_abar = double(o.inv_abar);
           const Mat<D, double> P = implicit_second_derivatives(nsni[L], basis<D>(d, inv_abar), s, inv_abar);

@@ -30,16 +30,17 @@ struct NodeFields {
   const Vec<D, Real>* position;   // x at the operators' configuration
   const Real* support;            // a_I
   const unsigned char* singular;  // 1: boundary singular kernel (rkpm.md 1.7); null: none
+  bool box = false;               // box supports (rkpm.md 1.2), else spheres
   MFSD_HD bool is_singular(Index i) const { return singular && singular[i]; }
 };
 
 // Psi_I at point p of node L's operator, y = x_p - x_I (rkpm.md 1.3, 1.7).
 template <int D, class Real>
 MFSD_HD inline double shape_at(const NodeOperator<D, Real>& op, int p, Index I, const Vec<D, double>& y, double a_I,
-                               bool singular_I) {
+                               bool singular_I, bool box) {
   const Index k = op.kronecker[p];
   if (k != kNoKronecker) return k == I ? 1.0 : 0.0;
-  const KernelSample<D> s = kernel(y, a_I, singular_I);
+  const KernelSample<D> s = kernel(y, a_I, singular_I, box);
   if (!(s.w > 0.0)) return 0.0;
   return shape_value<D, Real>(op.b[p], y, double(op.inv_abar), s.w);
 }
@@ -48,11 +49,11 @@ MFSD_HD inline double shape_at(const NodeOperator<D, Real>& op, int p, Index I, 
 // the part on the body's surface faces (bits of `surface`) in `boundary`.
 template <int D, class Real>
 MFSD_HD inline Vec<D, double> smoothed_gradient_volume(const NodeOperator<D, Real>& op, Index I,
-                                                       const Vec<D, double>& d, double a_I, bool singular_I,
+                                                       const Vec<D, double>& d, double a_I, bool singular_I, bool box,
                                                        unsigned char surface, Vec<D, double>* boundary) {
   Vec<D, double> g = Vec<D, double>::zero();
   for (int f = 0; f < 2 * D; ++f) {
-    const double psi = shape_at(op, f, I, cast<double>(op.offset[f]) + d, a_I, singular_I);
+    const double psi = shape_at(op, f, I, cast<double>(op.offset[f]) + d, a_I, singular_I, box);
     const Vec<D, double> part = cast<double>(op.area[f]) * psi;
     g += part;
     if (boundary && (surface >> f & 1u)) *boundary += part;
@@ -93,7 +94,7 @@ struct OperatorFunctor {
       o.area[f] = cast<Real>(faces.area[f]);
       r_max = math::max(r_max, norm(faces.offset[f]));
     }
-    reach[L] = Real(aL + r_max);
+    reach[L] = Real(aL * kernel_reach_factor<D>(nodes.box) + r_max);
     const PairRow row = rows.row(L);
     unsigned char flags = 0;
     double r2_min = INFINITY;
@@ -114,7 +115,7 @@ struct OperatorFunctor {
         const bool sing = nodes.is_singular(I);
         if (sing && squared_norm(y) < kSingularGuard * kSingularGuard * aI * aI) kron = I;
         const Vec<D + 1, double> h = basis<D>(y, inv_abar);
-        const double w = kernel<D>(y, aI, sing).w;
+        const double w = kernel<D>(y, aI, sing, nodes.box).w;
         ms.add(h, w);
         if (sing && w > 0.0) {
           any_singular = true;
@@ -143,7 +144,7 @@ struct OperatorFunctor {
       for (Index k = 0; k < row.count; ++k) {
         const Index I = rows.neighbor[row.at(k)];
         const Vec<D, double> y = cast<double>(xL - nodes.position[I]);
-        const KernelSample<D> s = kernel<D>(y, double(nodes.support[I]), false);
+        const KernelSample<D> s = kernel<D>(y, double(nodes.support[I]), false, nodes.box);
         const Vec<D + 1, double> h = basis<D>(y, inv_abar);
         ms.add(h, s.w);
         if (s.w > 0.0) dm.add(h, s, inv_abar);

@@ -41,7 +41,7 @@ struct StepStats {
   Real max_speed2;
   Real max_drift2;  // |x + dt v - x_build|^2: the next step's position against the list's
   Real max_support;
-  Real max_cell_reach;       // max_f |xbar_f - x_L|
+  Real max_cell_reach;       // reach - a: max_f |xbar_f - x_L| (+ a (sqrt d - 1) with box supports)
   Real min_dt;               // CFL-free stable step h/c
   Index first_bad;           // smallest index of a non-finite or escaped node, or n
   BoundingBox<D, Real> box;  // the body's box (the next search's grid, without a round trip)

@@ -38,27 +38,54 @@ struct KernelSample {
   Vec<D, double> gradient;  // d phi_a / dx (y = x - x_I)
 };
 
-// phi_a(y) and its gradient; a strict support r < a (rkpm.md 1.2). A singular
-// node's kernel is phi(z)/z^alpha (rkpm.md 1.7); the caller handles z below
+// phi_a(y) and its gradient; a strict support (rkpm.md 1.1-1.2): a sphere,
+// z = r/a < 1, or a box (`box`), the tensor product prod_k phi(|y_k|/a) with
+// every |y_k| < a (reach a sqrt(d)). A singular node's kernel is
+// phi/z^alpha with z = r/a in both (rkpm.md 1.7); the caller handles z below
 // kSingularGuard (Kronecker values).
 template <int D>
-MFSD_HD inline KernelSample<D> kernel(const Vec<D, double>& y, double a, bool singular) {
+MFSD_HD inline KernelSample<D> kernel(const Vec<D, double>& y, double a, bool singular, bool box = false) {
   KernelSample<D> s{0.0, Vec<D, double>::zero()};
   const double r = norm(y);
   const double z = r / a;
-  if (!(z < 1.0)) return s;
-  const double phi = bspline(z);
-  double dphi = bspline_derivative(z);  // d phi / dz
-  if (singular) {
-    // phi^ = z^-alpha phi, d phi^/dz = z^-alpha (phi' - alpha phi / z)  (rkpm.md 1.7)
+  double phi;
+  Vec<D, double> grad;  // d phi / dx
+  if (box) {
+    double f[D], df[D];
+    for (int k = 0; k < D; ++k) {
+      const double zk = math::fabs(y.v[k]) / a;
+      if (!(zk < 1.0)) return s;
+      f[k] = bspline(zk);
+      df[k] = bspline_derivative(zk) * (y.v[k] < 0.0 ? -1.0 : 1.0) / a;
+    }
+    phi = 1.0;
+    for (int k = 0; k < D; ++k) phi *= f[k];
+    for (int k = 0; k < D; ++k) {
+      grad.v[k] = df[k];
+      for (int j = 0; j < D; ++j)
+        if (j != k) grad.v[k] *= f[j];
+    }
+  } else {
+    if (!(z < 1.0)) return s;
+    phi = bspline(z);
+    grad = r > 0.0 ? y * (bspline_derivative(z) / (a * r)) : Vec<D, double>::zero();  // phi'(z) y / (a r)
+  }
+  if (singular && r > 0.0) {
+    // phi^ = z^-alpha phi, grad phi^ = z^-alpha (grad phi - alpha phi y / (a^2 z^2))  (rkpm.md 1.7)
     const double za = math::pow(z, kSingularExponent);
     s.w = phi / za;
-    dphi = (dphi - kSingularExponent * phi / z) / za;
+    s.gradient = (grad - y * (kSingularExponent * phi / (a * a * z * z))) * (1.0 / za);
   } else {
     s.w = phi;
+    s.gradient = grad;
   }
-  if (r > 0.0) s.gradient = y * (dphi / (a * r));  // d phi/dx = phi'(z) y / (a r)
   return s;
+}
+
+// The kernel's reach as a multiple of a: 1 for spheres, sqrt(d) for boxes.
+template <int D>
+MFSD_HD inline double kernel_reach_factor(bool box) {
+  return box ? math::sqrt(double(D)) : 1.0;
 }
 
 // The scaled linear basis H(y) = [1, y/abar] (rkpm.md 1.3).

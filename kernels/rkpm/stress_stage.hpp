@@ -154,10 +154,10 @@ struct StressFunctor {
       const double aI = double(nodes.support[I]);
       const Vec<D, double> du = cast<double>(increment[I]) - duL;
       const Vec<D, double> grad =
-          smoothed_gradient_volume(o, I, d, aI, nodes.is_singular(I), 0, (Vec<D, double>*)nullptr) * inv_V;
+          smoothed_gradient_volume(o, I, d, aI, nodes.is_singular(I), nodes.box, 0, (Vec<D, double>*)nullptr) * inv_V;
       Ln += outer(du, grad);  // rkpm.md 4.1: L_n = sum (du_I - du_L) (x) grad~Psi_I
       if (nsni) {
-        const KernelSample<D> s = kernel<D>(d, aI, false);
+        const KernelSample<D> s = kernel<D>(d, aI, false, nodes.box);
         if (!(s.w > 0.0)) continue;
         const Mat<D, double> P = implicit_second_derivatives(nsni[L], basis<D>(d, inv_abar), s, inv_abar);
         // rkpm.md 4.5: Deps^(i)_ab = 1/2 sum_I (du_Ia Psi_I,bi + du_Ib Psi_I,ai)

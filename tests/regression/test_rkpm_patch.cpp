@@ -72,7 +72,7 @@ InitialParticles square_nodes(double jitter, unsigned seed) {
 
 // max over interior nodes of |dv| rho V0 / (dt |sigma| dp) after one step,
 // |sigma| the largest von Mises stress (uniform in an exact run).
-double patch_residual(const std::string& rkpm, double jitter) {
+double patch_residual(const std::string& rkpm, double jitter, double reach = 2 * kDp) {
   const Scene scene = square_scene(rkpm);
   const InitialParticles init = square_nodes(jitter, 7);
   auto solver = make_solver(scene, init, SolverOptions{});
@@ -90,9 +90,10 @@ double patch_residual(const std::string& rkpm, double jitter) {
   for (size_t k = 0; k < s1.n; ++k) {
     const size_t id = size_t(s1.id[k]);
     const Point3& X = init.position[id];
-    // Nodes whose support (a = 2 dp) reaches no boundary face: the others
-    // carry the boundary term sum_f Psi_I sigma a_f, which tractions balance.
-    const double a = 2 * kDp * (1 + 1e-9), far = kCells * kDp - a;
+    // Nodes whose support (a = 2 dp; a box reaches 2 sqrt 2 dp) reaches no
+    // boundary face: the others carry the boundary term sum_f Psi_I sigma
+    // a_f, which tractions balance.
+    const double a = reach * (1 + 1e-9), far = kCells * kDp - a;
     const bool inside = X[0] >= a && X[0] <= far && X[1] >= a && X[1] <= far;
     if (!inside) continue;
     size_t k0 = 0;
@@ -122,4 +123,18 @@ TEST(RkpmPatchTest, NonConformingCellsNeedTheVariationalCorrection) {
   EXPECT_LE(on, 1e-13);
   EXPECT_LE(on_nsni, 1e-13);
   std::printf("patch residual, perturbed: VC off %.3g, VC on %.3g, VC on + NSNI %.3g\n", off, on, on_nsni);
+}
+
+// The same with box supports (`support_shape: box`, rkpm.md 1.1-1.2).
+TEST(RkpmPatchTest, BoxSupportsPassToo) {
+  const double reach = 2 * std::sqrt(2.0) * kDp;
+  const double lattice = patch_residual(R"({"integration": "nsni", "support_shape": "box"})", 0.0, reach);
+  const double off =
+      patch_residual(R"({"integration": "snni", "variational_correction": false, "support_shape": "box"})", 0.2, reach);
+  const double on = patch_residual(R"({"integration": "nsni", "support_shape": "box"})", 0.2, reach);
+  EXPECT_LE(lattice, 1e-13);
+  EXPECT_GT(off, 1e-2);
+  EXPECT_LE(on, 1e-13);
+  std::printf("patch residual, box supports: lattice + NSNI %.3g, perturbed VC off %.3g, VC on + NSNI %.3g\n", lattice,
+              off, on);
 }

@@ -311,7 +311,8 @@ struct HostOperators {
   std::vector<VecD<D>> smoothed(Index L) const {
     std::vector<VecD<D>> g(x.size());
     for (size_t I = 0; I < x.size(); ++I)
-      g[I] = smoothed_gradient_volume<D, double>(op[L], Index(I), x[L] - x[I], a[I], singular[I] != 0, 0, nullptr);
+      g[I] =
+          smoothed_gradient_volume<D, double>(op[L], Index(I), x[L] - x[I], a[I], singular[I] != 0, false, 0, nullptr);
     return g;
   }
 };
@@ -765,7 +766,7 @@ TEST(RkpmQuasiLinear, NodeCoveredOnlyByItselfGetsOne) {
   HostOperators<3> h(nodes, 2.0 * kDp);
   h.build(false, 0, 1e-3);
   EXPECT_EQ(h.status[0], 1u | 4u);
-  EXPECT_NEAR((shape_at<3, double>(h.op[0], 6, 0, VecD<3>::zero(), h.a[0], false)), 1.0, 1e-15);
+  EXPECT_NEAR((shape_at<3, double>(h.op[0], 6, 0, VecD<3>::zero(), h.a[0], false, false)), 1.0, 1e-15);
   const auto g = h.smoothed(0);
   EXPECT_LE(max_abs(g[0]), 1e-15 * h.op[0].volume / kDp);
 }

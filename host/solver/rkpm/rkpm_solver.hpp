@@ -319,7 +319,8 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       } else {
         a_max = double(transform_reduce<B>(r.begin, r.end, rkpm::ValueOf<Real>{real(field::support)}, Real(0),
                                            rkpm::MaxOf<Real>{}));
-        r_max = 0.5 * dp * std::sqrt(double(D));  // the initial cells' half diagonal bounds their reach
+        // The initial cells' half diagonal bounds their reach; a box kernel reaches a sqrt(d).
+        r_max = 0.5 * dp * std::sqrt(double(D)) + a_max * (rkpm::kernel_reach_factor<D>(spec_.box_supports) - 1.0);
         box = transform_reduce<B>(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
                                   BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{});
       }
@@ -364,7 +365,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   // ---- stages -------------------------------------------------------------
   rkpm::NodeFields<D, Real> nodes() {
     return {particles_.template get<Vec<D, Real>>(field::operator_position), real(field::support),
-            particles_.template get<unsigned char>(field::singular)};
+            particles_.template get<unsigned char>(field::singular), spec_.box_supports};
   }
   PairList<D, Real> rows() const {
     return PairList<D, Real>{raw(offsets_), raw(neighbor_), nullptr, nullptr, nullptr, nullptr};
