@@ -2,6 +2,7 @@
 //   mfsd run [SCENE] [-o DIR] [--backend cpu|cuda] [--threads N] [--precision float|double]
 //            [--set path=value]... [--max-steps N] [--quiet] [--restart DIR] [--checkpoint-every MIN]
 //   mfsd check SCENE [--set path=value]...
+//   mfsd decompose SCENE --ranks N [--set path=value]...
 //   mfsd --version | --help
 // Exit codes: 0 success, 2 bad input, 3 numerical failure, 130 / 143 interrupted
 // by SIGINT / SIGTERM (checkpoint written), 1 an internal error (a bug).
@@ -16,6 +17,7 @@
 
 #include "host/backend/backend_error.hpp"
 #include "host/cli/check_summary.hpp"
+#include "host/distributed/decomposition_summary.hpp"
 #include "host/driver/run.hpp"
 #include "host/output/checkpoint_file.hpp"
 #include "host/scene/particle_generator.hpp"
@@ -34,6 +36,8 @@ const char* kUsage =
     "usage:\n"
     "  mfsd run [SCENE.json] [options]   run a scene (without SCENE: the built-in oscillating plate)\n"
     "  mfsd check SCENE.json [--set ..]  validate a scene and print its resolved summary\n"
+    "  mfsd decompose SCENE.json --ranks N  the scene cut into N parts and each part's halo\n"
+    "                          (issue 25's domain decomposition; docs/distributed.md)\n"
     "  mfsd --version                    version, build and available backends\n"
     "  mfsd --help                       this text\n"
     "\n"
@@ -95,6 +99,24 @@ int command_check(int argc, char** argv) {
   const InitialParticles particles = generate_particles(doc.scene);
   print_warnings(doc.scene);
   std::cout << check_summary(doc, particles);
+  return 0;
+}
+
+int command_decompose(int argc, char** argv) {
+  cxxopts::Options opts("mfsd decompose", "decompose a scene");
+  opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())(
+      "ranks", "parts", cxxopts::value<int>())("scene", "scene file", cxxopts::value<std::string>());
+  opts.parse_positional({"scene"});
+  auto r = opts.parse(argc, argv);
+  if (!r.count("scene")) throw UsageError("mfsd decompose: a scene file is required (mfsd decompose SCENE.json)");
+  if (r.unmatched().size()) throw UsageError("mfsd decompose: unexpected argument '" + r.unmatched()[0] + "'");
+  const int ranks = r.count("ranks") ? r["ranks"].as<int>() : 0;
+  if (ranks < 1) throw UsageError("mfsd decompose: --ranks N (N >= 1) is required");
+  std::vector<std::string> sets;
+  if (r.count("set")) sets = r["set"].as<std::vector<std::string>>();
+  const SceneDocument doc = load_scene_file(r["scene"].as<std::string>(), sets);
+  const InitialParticles particles = generate_particles(doc.scene);
+  std::cout << distributed::decomposition_summary(doc, particles, ranks);
   return 0;
 }
 
@@ -200,6 +222,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (cmd == "check") return command_check(argc - 1, argv + 1);
+    if (cmd == "decompose") return command_decompose(argc - 1, argv + 1);
     if (cmd == "run") return command_run(argc - 1, argv + 1, command_line);
     throw UsageError("unknown command '" + cmd + "' (expected run, check, --version or --help)");
   } catch (const SceneError& e) {

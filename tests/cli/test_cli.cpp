@@ -395,3 +395,29 @@ TEST_F(Cli, CudaBackendRefusedWithoutDevice) {
   EXPECT_NE(r.output.find("--backend cuda"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out()));
 }
+
+// `mfsd decompose` (issue 25, docs/distributed.md): the plate in 4 parts,
+// owned counts summing to the scene's particles, and bad input exits 2.
+TEST_F(Cli, DecomposePrintsPartsAndHalos) {
+  const std::string plate = std::string(MFSD_SOURCE_DIR) + "/configs/oscillating_plate_2d.json";
+  const Result r = run("decompose " + plate + " --ranks 4");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("1612 particles in 4 parts"), std::string::npos) << r.output;
+  long owned = 0;
+  int rows = 0;
+  std::istringstream in(r.output);
+  std::string line;
+  while (std::getline(in, line)) {
+    long rank, own, ghosts;
+    if (std::sscanf(line.c_str(), "%ld %ld %ld", &rank, &own, &ghosts) == 3 && line.find('[') != std::string::npos) {
+      owned += own;
+      ++rows;
+      EXPECT_GT(ghosts, 0);
+    }
+  }
+  EXPECT_EQ(rows, 4);
+  EXPECT_EQ(owned, 1612);
+  EXPECT_EQ(run("decompose " + plate).code, 2);
+  EXPECT_EQ(run("decompose " + plate + " --ranks 0").code, 2);
+  EXPECT_EQ(run("decompose").code, 2);
+}
