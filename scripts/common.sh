@@ -15,6 +15,8 @@ mfsd_required_packages() {
   if ! command -v nvcc >/dev/null 2>&1 && [[ ! -x /usr/local/cuda/bin/nvcc ]]; then
     pkgs="$pkgs libthrust-dev"
   fi
+  # The distributed engine's MPI (issue 25), when asked (scripts/test.sh --mpi).
+  [[ ${MFSD_WITH_MPI:-0} == 1 ]] && pkgs="$pkgs libopenmpi-dev openmpi-bin"
   echo "$pkgs"
 }
 
