@@ -10,6 +10,7 @@
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/reduce.h>
 #include <thrust/scan.h>
+#include <thrust/scatter.h>
 #include <thrust/sequence.h>
 #include <thrust/sort.h>
 #include <thrust/transform_reduce.h>
@@ -72,6 +73,12 @@ inline void sequence(DeviceVector<B, T>& v) {
 template <class B, class T>
 inline void gather(const DeviceVector<B, Index>& map, const DeviceVector<B, T>& in, DeviceVector<B, T>& out) {
   thrust::gather(BackendTraits<B>::policy(), map.begin(), map.end(), in.begin(), out.begin());
+}
+
+// out[map[k]] = in[k] (the inverse of gather).
+template <class B, class T>
+inline void scatter(const DeviceVector<B, T>& in, const DeviceVector<B, Index>& map, DeviceVector<B, T>& out) {
+  thrust::scatter(BackendTraits<B>::policy(), in.begin(), in.end(), map.begin(), out.begin());
 }
 
 // out[k] = sum_{m<k} in[m]; returns the total.

@@ -8,6 +8,7 @@
 // by SIGINT / SIGTERM (checkpoint written), 1 an internal error (a bug).
 #include <cmath>
 #include <cstdio>
+#include <optional>
 // --set values may hold JSON with commas: never split option values.
 #define CXXOPTS_VECTOR_DELIMITER '\0'
 #include <cxxopts.hpp>
@@ -18,6 +19,7 @@
 #include "host/backend/backend_error.hpp"
 #include "host/cli/check_summary.hpp"
 #include "host/distributed/decomposition_summary.hpp"
+#include "host/distributed/distribution.hpp"
 #include "host/driver/run.hpp"
 #include "host/output/checkpoint_file.hpp"
 #include "host/scene/particle_generator.hpp"
@@ -205,7 +207,7 @@ int command_run(int argc, char** argv, const std::string& command_line) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run_command(int argc, char** argv) {
   const std::string command_line = join_args(argc, argv);
   try {
     if (argc < 2) {
@@ -247,4 +249,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "mfsd: internal error: %s\n", e.what());
     return 1;
   }
+}
+
+int main(int argc, char** argv) {
+  std::optional<mfsd::MpiSession> mpi;
+  try {
+    mpi.emplace(argc, argv);  // MPI_Init under mpirun in an MPI build (issue 25)
+  } catch (const mfsd::UsageError& e) {
+    std::fprintf(stderr, "mfsd: error: %s\n", e.what());
+    return 2;
+  }
+  const int code = run_command(argc, argv);
+  // A rank that stops with an error (printed above) ends every rank, whatever collective they wait in.
+  if (code != 0 && mfsd::MpiSession::active()) mfsd::MpiSession::abort("", code);
+  return code;
 }

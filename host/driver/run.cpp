@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 
+#include "host/distributed/distribution.hpp"
 #include "host/driver/interrupt.hpp"
 #include "host/driver/output_rows.hpp"
 #include "host/driver/progress.hpp"
@@ -118,6 +119,17 @@ void prepare_output_dir(const std::string& dir) {
 RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   InterruptHandling interrupts;  // SIGINT / SIGTERM: finish the step, checkpoint, stop
   const Scene& scene = doc.scene;
+  // Under mpirun (an MPI build): this rank's part of the run; null otherwise.
+  // Rank 0 writes the CSVs, run.json and the indices; every rank its snapshot pieces.
+  const std::unique_ptr<Distribution> dist = make_distribution();
+  const bool root = !dist || dist->root();
+  if (dist) {
+    dist->check(scene);
+    if (!options.restart.empty())
+      throw UsageError("a distributed run does not continue from a checkpoint yet (docs/distributed.md)");
+    if (options.checkpoint_every_minutes > 0)
+      throw UsageError("checkpoints of a distributed run are not written yet (docs/distributed.md)");
+  }
   // Everything that can be wrong with the input is found before the folder is
   // made or, for a continued run, touched.
   std::optional<RestartPoint> restart;
@@ -127,16 +139,19 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     saved = read_checkpoint(restart->folder);
   }
   InitialParticles particles = generate_particles(scene);
+  std::vector<size_t> measure_sizes;  // particles of each measure plane, in the whole scene
+  for (const auto& m : particles.measure_particles) measure_sizes.push_back(m.size());
+  if (dist) particles = dist->local_particles(scene, particles);
   std::vector<long> body_particles;
   for (const auto& r : particles.body_range) body_particles.push_back(long(r.end - r.begin));
   check_run_memory(scene, body_particles, options.solver);
   std::unique_ptr<Solver> solver = make_solver(scene, particles, options.solver);
+  if (dist) solver = dist->distribute(std::move(solver));
   // The solver keeps its own copy: of the driver's, only what the outputs
   // read stays (the measure planes' sizes, the rigid bodies' markers), so
   // that the set-up's peak memory does not hold the particles twice.
   {
     InitialParticles kept;
-    kept.measure_particles = std::move(particles.measure_particles);
     kept.rigid_markers = std::move(particles.rigid_markers);
     particles = std::move(kept);
   }
@@ -147,11 +162,14 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   if ((snapshot_stem + "_rigid_00000.vtu").size() - 10 > 255)
     throw SceneError("/name", "a name of " + std::to_string(scene.name.size()) + " characters",
                      "at most 239 characters (it names the snapshot files)");
-  const bool existed = fs::exists(dir);
-  prepare_output_dir(dir);
-  if (existed && !restart) remove_previous_outputs(dir);
-  if (restart) remove_partial_files(dir);
-  fs::create_directories(fs::path(dir) / "snapshots");
+  if (root) {
+    const bool existed = fs::exists(dir);
+    prepare_output_dir(dir);
+    if (existed && !restart) remove_previous_outputs(dir);
+    if (restart) remove_partial_files(dir);
+    fs::create_directories(fs::path(dir) / "snapshots");
+  }
+  if (dist) dist->barrier();  // the folder is ready for every rank's pieces
 
   RunStatus status;
   status.state = "running";
@@ -159,6 +177,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   try {
     solver->initialize();
   } catch (const NumericalFailure& f) {  // e.g. an expression that fails at t = 0: exit 3 as in the loop
+    // (a distributed run has ended every rank with the message already)
     status.state = "failed";
     status.message = f.what();
     write_run_json(dir, doc, options, SetupReport{}, status);
@@ -179,9 +198,9 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   }
   status.setup_seconds = seconds_since(t_start);
   const SetupReport setup = solver->setup_report();
-  write_run_json(dir, doc, options, setup, status);
+  if (root) write_run_json(dir, doc, options, setup, status);
 
-  if (!options.quiet) {
+  if (!options.quiet && root) {
     std::printf("mfsd: scene '%s' (%dD), %ld particles, %.1f neighbours/particle, backend %s, %s precision\n",
                 scene.name.c_str(), scene.dimension, setup.particles, setup.mean_neighbors,
                 options.solver.backend.c_str(), to_string(options.solver.precision));
@@ -191,6 +210,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     if (restart)
       std::printf("mfsd: continuing from %s at t = %.9g s, step %ld\n", restart->folder.c_str(), solver->time(),
                   solver->steps());
+    if (dist) std::printf("mfsd: distributed over %d processes (MPI)\n", dist->ranks());
     std::printf("mfsd: output in %s/\n", dir.c_str());
     std::fflush(stdout);
   }
@@ -200,6 +220,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   std::vector<std::pair<std::string, CsvWriter*>> csv_files;
   auto open_csv = [&](const std::string& name, const std::vector<std::string>& columns) {
     std::unique_ptr<CsvWriter> w;
+    if (!root) return w;  // rank 0 writes the series
     if (restart) {
       auto it = restart->position.csv_bytes.find(name);
       if (it == restart->position.csv_bytes.end())
@@ -227,11 +248,11 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   std::unique_ptr<CsvWriter> forces_csv;
   if (!scene.clamps.empty() || !scene.conditions.empty() || !scene.walls.empty() || !scene.contact.rigid_bodies.empty())
     forces_csv = open_csv("boundary_forces.csv", boundary_force_columns(scene));
-  PvdIndex pvd(dir + "/snapshots.pvd");
+  PvdIndex pvd(root ? dir + "/snapshots.pvd" : "");
   std::vector<RigidBodyMotion> rigid;
   for (size_t k = 0; k < scene.rigid_bodies.size(); ++k)
     rigid.emplace_back(scene.rigid_bodies[k], scene.constants, "/rigid_bodies/" + std::to_string(k));
-  PvdIndex rigid_pvd(dir + "/rigid_bodies.pvd");
+  PvdIndex rigid_pvd(root ? dir + "/rigid_bodies.pvd" : "");
   const bool single = options.solver.precision == Precision::single_precision;
   const double end_time = scene.solver.end_time;
   const double eps = 1e-12 * end_time;
@@ -249,8 +270,17 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
 
   auto write_outputs = [&](bool snapshot) {
     const auto t0 = Clock::now();
-    if (!scene.probes.empty()) probes_csv->row(probe_row(scene, solver->time(), solver->probes()));
-    if (forces_csv) forces_csv->row(boundary_force_row(scene, solver->time(), solver->boundary_forces()));
+    // Every rank takes part in the sums (distributed runs); rank 0 writes them.
+    if (!scene.probes.empty()) {
+      const auto p = solver->probes();
+      if (root) probes_csv->row(probe_row(scene, solver->time(), p));
+    }
+    const bool with_forces = !scene.clamps.empty() || !scene.conditions.empty() || !scene.walls.empty() ||
+                             !scene.contact.rigid_bodies.empty();
+    if (with_forces) {
+      const auto f = solver->boundary_forces();
+      if (root) forces_csv->row(boundary_force_row(scene, solver->time(), f));
+    }
     if (!crack_csv.empty()) {
       const auto tips = solver->crack_tips();
       for (size_t k = 0; k < tips.size(); ++k) crack_csv[k]->row(crack_row(scene, solver->time(), tips[k]));
@@ -258,18 +288,31 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     if (!measure_csv.empty()) {
       const auto m = solver->measures();
       for (size_t k = 0; k < m.size(); ++k)
-        measure_csv[k]->row(measure_row(scene, solver->time(), particles.measure_particles[k].size(), m[k]));
+        if (root) measure_csv[k]->row(measure_row(scene, solver->time(), measure_sizes[k], m[k]));
     }
     if (snapshot) {
       const EnergySample e = solver->energies();
-      energies_csv->row(energy_row(solver->time(), e, scene.dimension));
+      if (root) energies_csv->row(energy_row(solver->time(), e, scene.dimension));
       if (scene.output.vtu) {
         char number[16];
         std::snprintf(number, sizeof number, "_%05d.vtu", at.snapshot_count);
         const std::string name = snapshot_stem + number;
-        write_vtu(dir + "/" + name, solver->snapshot(), single);
-        pvd.add(solver->time(), name);
-        if (!rigid.empty()) {
+        if (dist) {  // one piece per rank, and rank 0's index over them
+          const Snapshot piece = solver->snapshot();
+          const std::string stem = name.substr(0, name.size() - 4);
+          auto piece_name = [&](int r) { return stem + "_r" + std::to_string(r) + ".vtu"; };
+          write_vtu(dir + "/" + piece_name(dist->rank()), piece, single);
+          if (root) {
+            std::vector<std::string> pieces;
+            for (int r = 0; r < dist->ranks(); ++r) pieces.push_back(fs::path(piece_name(r)).filename().string());
+            write_pvtu(dir + "/" + stem + ".pvtu", piece, single, pieces);
+            pvd.add(solver->time(), stem + ".pvtu");
+          }
+        } else {
+          write_vtu(dir + "/" + name, solver->snapshot(), single);
+          pvd.add(solver->time(), name);
+        }
+        if (!rigid.empty() && root) {
           const std::string rigid_name = snapshot_stem + "_rigid" + number;
           write_vtu(dir + "/" + rigid_name, rigid_body_snapshot(scene, rigid, particles.rigid_markers, solver->time()),
                     single);
@@ -283,7 +326,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   };
 
   // A checkpoint of the state now and of where the outputs stand.
-  const bool checkpointing = scene.output.checkpoint_interval > 0 || options.checkpoint_every_minutes > 0;
+  const bool checkpointing = !dist && (scene.output.checkpoint_interval > 0 || options.checkpoint_every_minutes > 0);
   auto last_checkpoint_wall = Clock::now();
   auto write_checkpoint_now = [&] {
     at.snapshots = pvd.entries();
@@ -303,7 +346,9 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
 
   if (!restart) write_outputs(true);
 
-  Progress progress(end_time, !options.quiet, solver->time(), solver->steps());
+  Progress progress(end_time, !options.quiet && root, solver->time(), solver->steps());
+  // An interruption ends every rank of a distributed run at the same step.
+  auto stop_signal = [&]() -> bool { return dist ? dist->any(interrupt_signal() != 0) : interrupt_signal() != 0; };
   RunResult result;
   result.output_dir = dir;
   double step_seconds = 0;
@@ -328,7 +373,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   };
   try {
     while (solver->time() < end_time - eps && (options.max_steps <= 0 || solver->steps() < options.max_steps) &&
-           !interrupt_signal()) {
+           !stop_signal()) {
       solver->limit_next_dt(end_time - solver->time());
       const auto t0 = Clock::now();
       solver->step();
@@ -359,10 +404,10 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       progress.update(t, solver->steps());
     }
     progress.finish();
-    const bool interrupted = interrupt_signal() != 0;
+    const bool interrupted = dist ? dist->any(interrupt_signal() != 0) : interrupt_signal() != 0;
     // The checkpoint first: a continued run takes the CSVs and the PVD as they
     // are now, so the stop's last snapshot below is replaced by its own outputs.
-    if (checkpointing || interrupted) write_checkpoint_now();
+    if (checkpointing || (interrupted && !dist)) write_checkpoint_now();
     if (last_snapshot_time != solver->time()) write_outputs(true);  // a run stopped early (--max-steps, a signal)
     if (interrupted) {
       status.state = "interrupted";
@@ -387,18 +432,21 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   status.step_seconds = step_seconds;
   status.output_seconds = output_seconds;
   status.wall_seconds = seconds_since(t_loop);
-  write_timing_json(dir, setup, solver->timers(), options, status);
-  write_run_json(dir, doc, options, setup, status);
+  if (root) {
+    write_timing_json(dir, setup, solver->timers(), options, status);
+    write_run_json(dir, doc, options, setup, status);
+  }
+  if (dist && !options.quiet) dist->print_report(session_steps - status.warmup_steps);
 
   result.steps = status.steps;
   result.time = status.simulated_time;
-  if (status.state == "interrupted")
+  if (status.state == "interrupted" && root && !dist)
     std::fprintf(stderr,
                  "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: mfsd run %s "
                  "--restart %s\n",
                  solver->time(), solver->steps(), status.checkpoint.c_str(),
                  doc.source_name.rfind('<', 0) == 0 ? "" : doc.source_name.c_str(), dir.c_str());
-  if (!options.quiet) {
+  if (!options.quiet && root) {
     char wall[32];
     format_duration(status.wall_seconds, wall, sizeof wall);
     const long timed = session_steps - status.warmup_steps;

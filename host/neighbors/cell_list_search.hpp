@@ -14,6 +14,7 @@
 #include <thrust/fill.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -28,6 +29,12 @@ namespace mfsd {
 struct BodySearch {
   BodyRange range;
   double smoothing_length;  // support radius = 2 h
+  // The cell grid's box (lo[0..2], hi[0..2]) where `fixed_box`, else the box
+  // of the range's particles. A distributed run gives each rank the whole
+  // body's box: the same cells, hence the same order of every row's
+  // neighbours as the single-process run (docs/distributed.md).
+  std::array<double, 6> box{};
+  bool fixed_box = false;
 };
 
 // The squared search radius (2h)^2 in the positions' precision: the count
@@ -103,7 +110,9 @@ void sort_into_cells(ParticleSet<B>& particles, const char* position, const std:
   sequence<B, Index>(index.order);
   parallel_for<B>(n, CellKeyFunctor<D, P>{raw(index.grids), particles.template get<Vec<D, P>>(position),
                                           particles.template get<int>(field::body), raw(index.keys)});
-  sort_by_key<B, std::int64_t, Index>(index.keys, index.order);
+  // Stable: particles of one cell keep their order (a distributed run's
+  // subset of a body then sorts as in the single-process run).
+  stable_sort_by_key<B, std::int64_t, Index>(index.keys, index.order);
   index.reordered = reorder;
   if (reorder) {
     reindex(index.order);

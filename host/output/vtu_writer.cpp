@@ -86,4 +86,26 @@ void write_vtu(const std::string& path, const Snapshot& s, bool single) {
   write_file_atomically(path, content);
 }
 
+void write_pvtu(const std::string& path, const Snapshot& s, bool single, const std::vector<std::string>& pieces) {
+  const char* real = single ? "Float32" : "Float64";
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+    << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+    << "    <PPointData Scalars=\"von_mises\" Vectors=\"velocity\">\n"
+    << "      <PDataArray type=\"Int64\" Name=\"id\"/>\n"
+    << "      <PDataArray type=\"Int32\" Name=\"body\"/>\n"
+    << "      <PDataArray type=\"UInt8\" Name=\"constrained\"/>\n"
+    << "      <PDataArray type=\"" << real << "\" Name=\"displacement\" NumberOfComponents=\"3\"/>\n"
+    << "      <PDataArray type=\"" << real << "\" Name=\"velocity\" NumberOfComponents=\"3\"/>\n";
+  for (const auto& f : s.fields) x << "      <PDataArray type=\"" << real << "\" Name=\"" << f.name << "\"/>\n";
+  x << "    </PPointData>\n"
+    << "    <PPoints>\n"
+    << "      <PDataArray type=\"" << real << "\" NumberOfComponents=\"3\"/>\n"
+    << "    </PPoints>\n";
+  for (const auto& piece : pieces) x << "    <Piece Source=\"" << piece << "\"/>\n";
+  x << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  write_file_atomically(path, x.str());
+}
+
 }  // namespace mfsd

@@ -4,6 +4,7 @@
 namespace mfsd::field {
 inline constexpr const char* id = "id";
 inline constexpr const char* body = "body";
+inline constexpr const char* ghost = "ghost";  // distributed runs: 1 for a copy of another rank's particle
 inline constexpr const char* reference_position = "reference_position";
 inline constexpr const char* reference_position_double = "reference_position_double";  // set-up only
 inline constexpr const char* displacement = "displacement";

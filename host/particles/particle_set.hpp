@@ -86,6 +86,16 @@ class ParticleSet {
         throw StateMismatch("the checkpoint has particle field '" + kv.first.substr(6) + "', which this run does not");
   }
 
+  // The raw bytes of a field's elements at `index`, in that order, and back
+  // into the elements at `index` (the ghost exchange, host/distributed/).
+  std::vector<char> pack(const std::string& name, const DeviceVector<B, Index>& index) const {
+    return find(name).pack(index);
+  }
+  void unpack(const std::string& name, const DeviceVector<B, Index>& index, const std::vector<char>& bytes) {
+    find(name).unpack(index, bytes);
+  }
+  size_t element_bytes(const std::string& name) const { return find(name).element_bytes(); }
+
   // Reorders every field: new[k] = old[perm[k]]. Ids travel with the data, so
   // outputs still name particles by their original index.
   void permute(const DeviceVector<B, Index>& perm) {
@@ -101,6 +111,9 @@ class ParticleSet {
     virtual const std::type_info& type() const = 0;
     virtual std::string save() const = 0;
     virtual void restore(const std::string& bytes, const std::string& name) = 0;
+    virtual std::vector<char> pack(const DeviceVector<B, Index>& index) const = 0;
+    virtual size_t element_bytes() const = 0;
+    virtual void unpack(const DeviceVector<B, Index>& index, const std::vector<char>& bytes) = 0;
   };
   template <class T>
   struct Field final : FieldBase {
@@ -112,6 +125,7 @@ class ParticleSet {
       data.swap(tmp);
     }
     size_t bytes() const override { return data.size() * sizeof(T); }
+    size_t element_bytes() const override { return sizeof(T); }
     const std::type_info& type() const override { return typeid(T); }
     std::string save() const override {
       const std::vector<T> h = to_host<B>(data);
@@ -124,6 +138,22 @@ class ParticleSet {
       std::vector<T> h(data.size());
       if (!bytes.empty()) std::memcpy(static_cast<void*>(h.data()), bytes.data(), bytes.size());
       from_host<B>(h, data);
+    }
+    std::vector<char> pack(const DeviceVector<B, Index>& index) const override {
+      DeviceVector<B, T> picked(index.size());
+      gather<B, T>(index, data, picked);
+      const std::vector<T> h = to_host<B>(picked);
+      std::vector<char> bytes(h.size() * sizeof(T));
+      if (!h.empty()) std::memcpy(bytes.data(), static_cast<const void*>(h.data()), bytes.size());
+      return bytes;
+    }
+    void unpack(const DeviceVector<B, Index>& index, const std::vector<char>& bytes) override {
+      if (bytes.size() != index.size() * sizeof(T)) throw std::logic_error("ParticleSet::unpack: size mismatch");
+      std::vector<T> h(index.size());
+      if (!h.empty()) std::memcpy(static_cast<void*>(h.data()), bytes.data(), bytes.size());
+      DeviceVector<B, T> values(index.size());
+      from_host<B>(h, values);
+      scatter<B, T>(values, index, data);
     }
   };
 

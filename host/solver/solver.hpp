@@ -9,6 +9,7 @@
 
 #include "host/backend/cuda_devices.hpp"
 #include "host/backend/stage_timers.hpp"
+#include "host/distributed/ghost_exchange.hpp"
 #include "host/output/snapshot.hpp"
 #include "host/particles/state_archive.hpp"
 #include "host/scene/particle_generator.hpp"
@@ -121,6 +122,10 @@ class Solver {
   // initialize() and throws StateMismatch when the archive does not fit.
   virtual void save_state(StateArchive& archive) = 0;
   virtual void restore_state(const StateArchive& archive) = 0;
+  // A distributed run (issue 25): before initialize(), the ghosts among the
+  // particles and the transport that refreshes them. A method that cannot
+  // run distributed yet says so.
+  virtual void attach_ghosts(std::shared_ptr<GhostExchange> ghosts) = 0;
 };
 
 struct SolverOptions {

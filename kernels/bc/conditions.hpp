@@ -236,10 +236,12 @@ struct WallFunctor {
   const Vec<D, Real>* acceleration;
   const Real* volume;
   Vec<D, Real>* velocity;
+  const unsigned char* ghost = nullptr;  // distributed runs: the owner's wall acts on a ghost
 
   MFSD_HD ConditionSums<Real> operator()(Index k) const {
     ConditionSums<Real> s = ConditionSums<Real>::zero();
     const Index i = begin + k;
+    if (ghost && ghost[i]) return s;
     const Vec<D, Real> x = reference_position[i] + displacement[i];
     const Real gap = dot(x - point, normal) - half_dp;
     const Vec<D, Real> v = velocity[i];

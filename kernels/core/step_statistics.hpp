@@ -37,8 +37,10 @@ struct StepStatisticsFunctor {
   const Real* stiffening;                    // null: no Holzapfel-Ogden body
   Vec<D, Real> lower, upper;                 // scene bounds
   Index n;
+  const unsigned char* ghost = nullptr;  // distributed runs: ghosts (copies of other ranks' particles) count not
 
   MFSD_HD StepStatistics<Real> operator()(Index i) const {
+    if (ghost && ghost[i]) return StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n};
     const Vec<D, Real> v = velocity[i], a = acceleration[i];
     const Vec<D, Real> x = reference_position[i] + displacement[i];
     const Real v2 = squared_norm(v), a2 = squared_norm(a);

@@ -106,6 +106,15 @@ struct EnergySumsPlus {
   }
 };
 
+// A per-particle sum's term, zero for a ghost (a copy of another rank's
+// particle in a distributed run, docs/distributed.md; ghost null otherwise).
+template <class F>
+struct OwnedOnly {
+  F f;
+  const unsigned char* ghost;
+  MFSD_HD auto operator()(Index i) const -> decltype(f(i)) { return ghost && ghost[i] ? decltype(f(i)){} : f(i); }
+};
+
 // Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work, momentum m v,
 // gravity's work m g . u and the damping's work of particle i (accumulated in
 // double).

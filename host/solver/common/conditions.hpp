@@ -169,7 +169,8 @@ class Conditions {
                                v.displacement,
                                v.acceleration,
                                v.volume,
-                               v.velocity};
+                               v.velocity,
+                               v.ghost};
         for (int a = 0; a < D; ++a) f.point.v[a] = Real(w.spec->point[a]), f.normal.v[a] = Real(w.spec->normal[a]);
         pending_.push_back(Pending{
             nullptr, &w, nullptr, nullptr, b, &body_boundary_work_, te, dt, step,

@@ -17,6 +17,9 @@ struct Kinematics {
   Vec<D, Real>* velocity;
   Vec<D, Real>* acceleration;
   const Real* volume;  // V0
+  // Distributed runs (docs/distributed.md): 1 for a ghost, a copy of another
+  // rank's particle that the shared services leave to its owner; else null.
+  const unsigned char* ghost = nullptr;
 };
 
 }  // namespace mfsd

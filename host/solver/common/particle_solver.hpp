@@ -11,7 +11,9 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,12 +22,14 @@
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
+#include "host/scene/scene_error.hpp"
 #include "host/solver/common/conditions.hpp"
 #include "host/solver/common/contact.hpp"
 #include "host/solver/common/kinematics.hpp"
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
 #include "host/solver/stage_run.hpp"
+#include "kernels/core/step_statistics.hpp"
 #include "kernels/probes/probe_gather.hpp"
 
 namespace mfsd {
@@ -58,6 +62,14 @@ class ParticleSolver : public Solver {
   DeviceResults<B>& step_results() { return results_; }
   // The acoustic CFL number of this solver's time step.
   double cfl() const { return scene_.solver.cfl; }
+  // A distributed run (issue 25): methods that refresh their ghosts say so
+  // in ghosts_supported(); the others refuse.
+  void attach_ghosts(std::shared_ptr<GhostExchange> ghosts) override {
+    if (!ghosts_supported())
+      throw UsageError(std::string("the ") + to_string(scene_.solver.method) +
+                       " method does not run on several processes yet (docs/distributed.md)");
+    ghosts_ = std::move(ghosts);
+  }
   double time() const override { return time_; }
   double next_dt() const override { return dt_next_; }
   long steps() const override { return steps_; }
@@ -173,7 +185,8 @@ class ParticleSolver : public Solver {
                                particles_.template get<Vec<D, Real>>(field::displacement),
                                particles_.template get<Vec<D, Real>>(field::velocity),
                                particles_.template get<Vec<D, Real>>(field::acceleration),
-                               particles_.template get<Real>(kinematic_volume_)};
+                               particles_.template get<Real>(kinematic_volume_),
+                               ghost_flags()};
   }
 
   // One timed stage; a device error names it (backend_error.hpp), and in
@@ -191,6 +204,47 @@ class ParticleSolver : public Solver {
   void declare_stage(const char* name) {
     timers_.id(name);
     stage_names_ += (stage_names_.empty() ? "" : ", ") + std::string(name);
+  }
+
+  virtual bool ghosts_supported() const { return false; }
+
+  // Distributed runs: the send and receive indices of the ghost exchange in
+  // the solver's order, once the set-up has reordered the particles.
+  void bind_ghosts() {
+    if (!ghosts_) return;
+    const std::vector<Index> where = locate();
+    std::vector<Index> send, receive;
+    for (long id : ghosts_->send_ids()) send.push_back(where[size_t(id)]);
+    for (long id : ghosts_->receive_ids()) receive.push_back(where[size_t(id)]);
+    from_host<B>(send, ghost_send_index_);
+    from_host<B>(receive, ghost_receive_index_);
+  }
+
+  // Distributed runs: the ghosts' copies of these fields (those registered)
+  // from their owners. Nothing in a single-process run.
+  void refresh_ghosts(std::initializer_list<const char*> names) {
+    if (!ghosts_) return;
+    for (const char* name : names) {
+      if (!particles_.has(name)) continue;
+      std::vector<char> received;
+      ghosts_->exchange(particles_.pack(name, ghost_send_index_), particles_.element_bytes(name), received);
+      particles_.unpack(name, ghost_receive_index_, received);
+    }
+  }
+
+  // Distributed runs: the time step's statistics over the whole scene.
+  void maxima_over_ranks(StepStatistics<Real>& s) {
+    if (!ghosts_) return;
+    std::vector<double> v{double(s.max_speed2), double(s.max_acceleration2), double(s.max_inverse_stretch),
+                          double(s.max_stiffening)};
+    ghosts_->max_over_ranks(v);
+    s.max_speed2 = Real(v[0]), s.max_acceleration2 = Real(v[1]);
+    s.max_inverse_stretch = Real(v[2]), s.max_stiffening = Real(v[3]);
+  }
+
+  // Null in a single-process run; else 1 per ghost particle, in the solver's order.
+  const unsigned char* ghost_flags() {
+    return ghosts_ ? particles_.template get<unsigned char>(field::ghost) : nullptr;
   }
 
   // The fields every method has, from the scene's initial particles: id,
@@ -217,6 +271,10 @@ class ParticleSolver : public Solver {
     from_host<B>(init_.body, particles_.template buffer<int>(field::body));
     particles_.template add<unsigned char>(field::constrained);
     from_host<B>(init_.constrained, particles_.template buffer<unsigned char>(field::constrained));
+    if (ghosts_) {
+      particles_.template add<unsigned char>(field::ghost);
+      from_host<B>(ghosts_->ghost_mask(), particles_.template buffer<unsigned char>(field::ghost));
+    }
     particles_.template add<Vec<D, double>>(field::reference_position_double);
     from_host<B>(xd, particles_.template buffer<Vec<D, double>>(field::reference_position_double));
     particles_.template add<Vec<D, Real>>(field::reference_position);
@@ -439,6 +497,8 @@ class ParticleSolver : public Solver {
   // The step between begin_step() and end_step(): its dt and the host round trips before it.
   double step_dt_ = 0;
   long round_trips_before_ = 0;
+  std::shared_ptr<GhostExchange> ghosts_;  // distributed runs only
+  DeviceVector<B, Index> ghost_send_index_, ghost_receive_index_;
 };
 
 }  // namespace mfsd

@@ -266,6 +266,10 @@ class CoupledSolver : public Solver {
   }
 
   // Each solver's state under its method's prefix, the contact between them at the top.
+  void attach_ghosts(std::shared_ptr<GhostExchange>) override {
+    throw UsageError("a scene of several methods does not run on several processes yet (docs/distributed.md)");
+  }
+
   void save_state(StateArchive& archive) override {
     for (size_t q = 0; q < kParts; ++q) {
       StateArchive a;

@@ -231,6 +231,7 @@ ReferenceNeighborList<B, D, Real> build_reference_neighbor_list(ParticleSet<B>& 
       l = h = r.size() ? host_x[size_t(r.begin)].v[a] : 0.0;
       for (Index i = r.begin; i < r.end; ++i)
         l = std::min(l, host_x[size_t(i)].v[a]), h = std::max(h, host_x[size_t(i)].v[a]);
+      if (bodies[k].fixed_box) l = bodies[k].box[size_t(a)], h = bodies[k].box[3 + size_t(a)];
     }
   }
   CellIndex<B, D> index;

@@ -134,7 +134,9 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
-    return transform_reduce<B>(s_.range.begin, s_.range.end, energy_functor(v), EnergySums{}, EnergySumsPlus{});
+    return transform_reduce<B>(s_.range.begin, s_.range.end,
+                               OwnedOnly<EnergyFunctor<D, Real, Material>>{energy_functor(v), v.ghost}, EnergySums{},
+                               EnergySumsPlus{});
   }
 
  protected:

@@ -76,15 +76,18 @@ template <class Real>
 struct MaxPlus {
   MFSD_HD Real operator()(Real a, Real b) const { return math::max(a, b); }
 };
+// A particle's value, 0 for a ghost (distributed runs; ghost null otherwise).
 template <class Real>
 struct ReadScalar {
   const Real* p;
-  MFSD_HD double operator()(Index i) const { return double(p[i]); }
+  const unsigned char* ghost = nullptr;
+  MFSD_HD double operator()(Index i) const { return ghost && ghost[i] ? 0.0 : double(p[i]); }
 };
 template <class Real>
 struct ReadScalarReal {
   const Real* p;
-  MFSD_HD Real operator()(Index i) const { return p[i]; }
+  const unsigned char* ghost = nullptr;
+  MFSD_HD Real operator()(Index i) const { return ghost && ghost[i] ? Real(0) : p[i]; }
 };
 
 template <class B, int D, class Real>
@@ -119,7 +122,13 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
 
     // Reference neighbour search with reordering, then B0 (seed 000 eq. 21).
     std::vector<BodySearch> search;
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) search.push_back(BodySearch{ranges_[b], props(b).h});
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      search.push_back(BodySearch{ranges_[b], props(b).h});
+      if (this->ghosts_) {  // the whole body's cells (distributed runs)
+        for (size_t k = 0; k < 6; ++k) search.back().box[k] = this->ghosts_->body_boxes()[6 * b + k];
+        search.back().fixed_box = true;
+      }
+    }
     const bool paper_limiter =
         scene_.solver.hourglass == HourglassControl::genog && scene_.solver.genog_limiter == GenogLimiterChoice::paper;
     std::vector<Notch<D>> notches;  // pairs they cut are left out (seed 001 section 3.3.1)
@@ -152,6 +161,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     pairs_ = build_reference_neighbor_list<B, D, Real>(particles_, search, scene_.solver.reorder, paper_limiter,
                                                        notches, field::correction_matrix, half_only, half_float);
     particles_.remove(field::reference_position_double);
+    this->bind_ghosts();  // distributed runs: the exchange in the reordered indices
     if constexpr (std::is_same<B, Cpu>::value)
       if (half_loop && !half_only) build_half_pair_list(pairs_, n);
 
@@ -161,6 +171,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
                                                 raw(regularized), Real(scene_.solver.correction_floor)});
     report_.regularized_corrections =
         long(thrust::count(BackendTraits<B>::policy(), regularized.begin(), regularized.end(), (unsigned char)1));
+    // A ghost's neighbourhood is cut by the halo: its B0 comes from its owner.
+    this->refresh_ghosts({field::correction_matrix});
 
     // State and stage fields, registered by need.
     particles_.template add<Mat<D, Real>>(field::deformation_gradient);
@@ -188,6 +200,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     }
     if (scene_.solver.damping_factor > 0) particles_.template add<Real>(field::damping_work);  // zero
     bind_views();
+    v_.ghost = this->ghost_flags();
     // Snapshot fields: (output name, particle field), written by every writer under the name.
     snapshot_fields_ = {{"von_mises", field::von_mises},
                         {"J", field::jacobian},
@@ -221,6 +234,13 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
           if (surface(i)) near_surface[size_t(neighbor[k])] = 1;
           if (!full && surface(neighbor[k])) near_surface[size_t(i)] = 1;
         }
+      }
+      // Distributed runs: contact acts on owned particles (walls and rigid
+      // bodies; the scene check refuses contact between bodies there).
+      if (v_.ghost) {
+        const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
+        for (Index i = 0; i < n; ++i)
+          if (ghost[size_t(i)]) near_surface[size_t(i)] = 0;
       }
       this->setup_contact(std::move(near_surface));
     }
@@ -258,6 +278,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     if (initial_displacement) {
       gradient_into_rate(v_.displacement);
       parallel_for<B>(n, AddIdentityFunctor<D, Real>{v_.deformation_rate, v_.deformation_gradient});
+      this->refresh_ghosts({field::deformation_gradient});
     }
     results_.clear();
     conditions_.apply_initial(v_, results_);  // velocity conditions at t = 0, clamps
@@ -265,12 +286,17 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
                              results_);  // time-dependent active potentials at t = 0
     results_.fetch();
     conditions_.collect(results_, v_);
+    // Distributed runs: conditions act on owned particles; ghosts follow
+    // their owners after every pass whose pair sums their cut rows get wrong.
+    this->refresh_ghosts({field::velocity, field::displacement});
 
     // Initial rates and forces, so that the first time step sees them.
     gradient_into_rate(v_.velocity);
+    this->refresh_ghosts({field::deformation_rate});
     for (auto& k : bodies_) k->prepare_step(0.0);
     for (auto& k : bodies_) k->stress(v_, Real(0));
     for (auto& k : bodies_) k->acceleration(v_, Real(0));
+    this->refresh_ghosts({field::acceleration, field::velocity});
     update_time_step(statistics());
     for (auto& k : bodies_) gravity_at_start_.push_back(k->energy(v_).gravity);  // with an initial displacement
 
@@ -321,6 +347,9 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(v_, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(v_, time_, dt, steps_ + 1, results_); });
     if (relaxation_.enabled()) run("relaxation", [&] { relaxation_.apply(v_, time_, dt, results_); });
+    // Distributed runs: the new velocities of the ghosts (their rows' sums
+    // were cut), read by the owned rows' rate sums.
+    if (this->ghosts_) run("halo", [&] { this->refresh_ghosts({field::velocity, field::acceleration}); });
     ResultSlot<StepStatistics<Real>> stats_slot;
     run("deformation_rate", [&] {
       RateHalfStepFunctor<D, Real> f{
@@ -346,6 +375,11 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       }
       stats_slot = results_.reduce(Index(0), n, f, init, StepStatisticsCombine<Real>{});
     });
+    // Distributed runs: the state the next step's stress stage reads.
+    if (this->ghosts_)
+      run("halo", [&] {
+        this->refresh_ghosts({field::displacement, field::deformation_gradient, field::deformation_rate});
+      });
     // The step's one synchronisation: every sum of the step comes to the host.
     run("time_step", [&] {
       results_.fetch();
@@ -398,11 +432,19 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
       e.bodies.push_back(be);
     }
     compute_hourglass_indicator();
+    // Over the owned particles (distributed runs: not the ghosts).
     const Index n = particles_.size();
-    e.hourglass_max =
-        double(transform_reduce<B>(0, n, ReadScalarReal<Real>{v_.hourglass_indicator}, Real(0), MaxPlus<Real>{}));
-    e.hourglass_mean =
-        n ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator}, 0.0, thrust::plus<double>{}) / n : 0.0;
+    const Index owned =
+        v_.ghost ? n - Index(thrust::count(
+                           BackendTraits<B>::policy(), particles_.template buffer<unsigned char>(field::ghost).begin(),
+                           particles_.template buffer<unsigned char>(field::ghost).end(), (unsigned char)1))
+                 : n;
+    e.hourglass_max = double(
+        transform_reduce<B>(0, n, ReadScalarReal<Real>{v_.hourglass_indicator, v_.ghost}, Real(0), MaxPlus<Real>{}));
+    e.hourglass_mean = owned ? transform_reduce<B>(0, n, ReadScalar<Real>{v_.hourglass_indicator, v_.ghost}, 0.0,
+                                                   thrust::plus<double>{}) /
+                                   owned
+                             : 0.0;
     return e;
   }
 
@@ -431,6 +473,7 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
   }
 
  private:
+  bool ghosts_supported() const override { return true; }
   void update_observables() override { compute_observables(); }
   void update_stress_observables() override {
     for (auto& k : bodies_) k->stress_observables(v_);
@@ -609,7 +652,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
                                      v_.stiffening,
                                      {},
                                      {},
-                                     n};
+                                     n,
+                                     v_.ghost};
     for (int a = 0; a < D; ++a) {
       f.lower.v[a] = Real(scene_.bounds.min[a]);
       f.upper.v[a] = Real(scene_.bounds.max[a]);
@@ -626,7 +670,8 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
   // dt = CFL min(h/(c0 + |v|max), sqrt(h/|a|max)) (seed 000 eq. 38); with
   // solver.deformed_time_step, c0 is scaled by s = max(1, max_i |F_i^{-1}|_2),
   // the Lagrangian wave speed where the body is compressed most (theory.md).
-  void update_time_step(const StepStatistics<Real>& s) {
+  void update_time_step(StepStatistics<Real> s) {
+    this->maxima_over_ranks(s);  // distributed runs: the whole scene's maxima
     const double vmax = std::sqrt(double(s.max_speed2));
     const double amax = std::sqrt(double(s.max_acceleration2));
     const double stretch = std::max(1.0, double(s.max_inverse_stretch));

@@ -1,0 +1,389 @@
+// The MPI build's distributed run (issue 25, docs/distributed.md): each rank
+// runs the method's own solver on its owned particles and ghosts, the ghosts
+// refreshed by MPI_Alltoallv of the fields each pass reads (the solver says
+// which), and the solver below makes every answer global: the time step is the
+// minimum over the ranks, sums and means are reduced, snapshots hold the owned
+// particles under their ids in the whole scene.
+#define OMPI_SKIP_MPICXX 1  // the C interface only
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <numeric>
+
+#include "host/distributed/decomposition_summary.hpp"
+#include "host/distributed/distribution.hpp"
+#include "host/distributed/local_part.hpp"
+#include "host/scene/scene_error.hpp"
+#include "host/solver/numerical_failure.hpp"
+
+namespace mfsd {
+
+namespace {
+
+bool g_initialized = false;
+
+int world_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int world_size() {
+  int s = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+void sum(double* values, int n) { MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD); }
+double reduce(double value, MPI_Op op) {
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, op, MPI_COMM_WORLD);
+  return value;
+}
+
+// Host staging: the solver packs and unpacks on its backend; the bytes go by
+// one MPI_Alltoallv per field (a GPU-aware library could take device buffers).
+class MpiGhostExchange final : public GhostExchange {
+ public:
+  explicit MpiGhostExchange(const distributed::LocalPart& p)
+      : mask_(p.ghost),
+        send_(p.send_ids),
+        receive_(p.receive_ids),
+        send_counts_(p.send_counts),
+        receive_counts_(p.receive_counts),
+        boxes_(p.body_boxes) {}
+  const std::vector<double>& body_boxes() const override { return boxes_; }
+  const std::vector<unsigned char>& ghost_mask() const override { return mask_; }
+  const std::vector<long>& send_ids() const override { return send_; }
+  const std::vector<long>& receive_ids() const override { return receive_; }
+  void exchange(const std::vector<char>& send, size_t element_bytes, std::vector<char>& receive) override {
+    const size_t ranks = send_counts_.size();
+    std::vector<int> sc(ranks), sd(ranks), rc(ranks), rd(ranks);
+    int s = 0, r = 0;
+    for (size_t q = 0; q < ranks; ++q) {
+      sc[q] = int(size_t(send_counts_[q]) * element_bytes);
+      rc[q] = int(size_t(receive_counts_[q]) * element_bytes);
+      sd[q] = s;
+      rd[q] = r;
+      s += sc[q];
+      r += rc[q];
+    }
+    receive.resize(size_t(r));
+    MPI_Alltoallv(send.data(), sc.data(), sd.data(), MPI_BYTE, receive.data(), rc.data(), rd.data(), MPI_BYTE,
+                  MPI_COMM_WORLD);
+    bytes_sent_ += double(s);
+    ++exchanges_;
+  }
+  void max_over_ranks(std::vector<double>& values) override {
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  }
+  double bytes_sent() const { return bytes_sent_; }
+  long exchanges() const { return exchanges_; }
+  void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
+
+ private:
+  std::vector<unsigned char> mask_;
+  std::vector<long> send_, receive_;
+  std::vector<int> send_counts_, receive_counts_;
+  std::vector<double> boxes_;
+  double bytes_sent_ = 0;
+  long exchanges_ = 0;
+};
+
+class DistributedSolver final : public Solver {
+ public:
+  DistributedSolver(std::unique_ptr<Solver> inner, const distributed::LocalPart& part,
+                    std::shared_ptr<MpiGhostExchange> exchange)
+      : inner_(std::move(inner)),
+        global_id_(part.global_id),
+        ghost_(part.ghost),
+        owned_(part.owned),
+        exchange_(std::move(exchange)) {
+    for (long m : part.probe_members) probe_members_.push_back(double(m));
+    for (long m : part.measure_members) measure_members_.push_back(double(m));
+    probe_total_ = probe_members_;
+    measure_total_ = measure_members_;
+    sum(probe_total_.data(), int(probe_total_.size()));
+    sum(measure_total_.data(), int(measure_total_.size()));
+    body_owned_.assign(part.particles.body_range.size(), 0.0);
+    for (size_t i = 0; i < ghost_.size(); ++i)
+      if (!ghost_[i]) body_owned_[size_t(part.particles.body[i])] += 1;
+    sum(body_owned_.data(), int(body_owned_.size()));
+  }
+
+  void initialize() override {
+    guarded([&] { inner_->initialize(); });
+    common_dt();
+    exchange_->reset_counts();
+  }
+  void step() override {
+    guarded([&] { inner_->step(); });
+    common_dt();
+  }
+  void limit_next_dt(double dt_max) override { inner_->limit_next_dt(dt_max); }
+  double time() const override { return inner_->time(); }
+  double next_dt() const override { return inner_->next_dt(); }
+  long steps() const override { return inner_->steps(); }
+
+  // The owned particles, by their ids in the whole scene.
+  Snapshot snapshot() override {
+    const Snapshot all = inner_->snapshot();
+    Snapshot s;
+    std::vector<size_t> keep;
+    for (size_t k = 0; k < all.n; ++k)
+      if (!ghost_[size_t(all.id[k])]) keep.push_back(k);
+    s.n = keep.size();
+    for (const auto& f : all.fields) s.fields.push_back({f.name, {}});
+    for (size_t k : keep) {
+      s.id.push_back(global_id_[size_t(all.id[k])]);
+      s.body.push_back(all.body[k]);
+      s.constrained.push_back(all.constrained[k]);
+      for (int a = 0; a < 3; ++a) {
+        s.position.push_back(all.position[3 * k + size_t(a)]);
+        s.displacement.push_back(all.displacement[3 * k + size_t(a)]);
+        s.velocity.push_back(all.velocity[3 * k + size_t(a)]);
+      }
+      for (size_t f = 0; f < all.fields.size(); ++f) s.fields[f].values.push_back(all.fields[f].values[k]);
+    }
+    return s;
+  }
+
+  EnergySample energies() override {
+    EnergySample e = inner_->energies();
+    std::vector<double> v{e.kinetic,     e.strain,      e.momentum[0],
+                          e.momentum[1], e.momentum[2], e.hourglass_mean * double(owned_)};
+    for (const BodyEnergy& b : e.bodies)
+      v.insert(v.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.contact_work,
+                         b.gravity_work, b.damping, b.relaxation, b.crack_surface, b.active_work, b.momentum[0],
+                         b.momentum[1], b.momentum[2]});
+    sum(v.data(), int(v.size()));
+    size_t k = 0;
+    e.kinetic = v[k++], e.strain = v[k++];
+    for (int a = 0; a < 3; ++a) e.momentum[a] = v[k++];
+    const double owned = std::accumulate(body_owned_.begin(), body_owned_.end(), 0.0);
+    e.hourglass_mean = owned > 0 ? v[k++] / owned : (k++, 0.0);
+    for (BodyEnergy& b : e.bodies) {
+      for (double* x : {&b.kinetic, &b.strain, &b.plastic, &b.fracture, &b.external_work, &b.boundary_work,
+                        &b.contact_work, &b.gravity_work, &b.damping, &b.relaxation, &b.crack_surface, &b.active_work,
+                        &b.momentum[0], &b.momentum[1], &b.momentum[2]})
+        *x = v[k++];
+    }
+    e.hourglass_max = reduce(e.hourglass_max, MPI_MAX);
+    return e;
+  }
+
+  // A probe's mean over its particles: each rank's mean over those it owns, weighted by their number.
+  std::vector<ProbeSample> probes() override {
+    std::vector<ProbeSample> p = inner_->probes();
+    std::vector<double> v;
+    for (size_t k = 0; k < p.size(); ++k) {
+      const double w = probe_members_[k];
+      for (int a = 0; a < 3; ++a)
+        v.insert(v.end(), {w * p[k].position[a], w * p[k].displacement[a], w * p[k].velocity[a]});
+      v.insert(v.end(), {w * p[k].von_mises, w * p[k].jacobian, w * p[k].von_mises_strain, w * p[k].plastic_strain,
+                         w * p[k].phase_field});
+    }
+    sum(v.data(), int(v.size()));
+    size_t i = 0;
+    for (size_t k = 0; k < p.size(); ++k) {
+      const double w = probe_total_[k] > 0 ? 1.0 / probe_total_[k] : 0.0;
+      for (int a = 0; a < 3; ++a) {
+        p[k].position[a] = w * v[i++];
+        p[k].displacement[a] = w * v[i++];
+        p[k].velocity[a] = w * v[i++];
+      }
+      for (double* x :
+           {&p[k].von_mises, &p[k].jacobian, &p[k].von_mises_strain, &p[k].plastic_strain, &p[k].phase_field})
+        *x = w * v[i++];
+    }
+    return p;
+  }
+
+  std::vector<BoundaryForceSample> boundary_forces() override {
+    std::vector<BoundaryForceSample> f = inner_->boundary_forces();
+    std::vector<double> v;
+    for (const auto& s : f) v.insert(v.end(), s.force.begin(), s.force.end());
+    sum(v.data(), int(v.size()));
+    for (size_t k = 0; k < f.size(); ++k)
+      for (int a = 0; a < 3; ++a) f[k].force[size_t(a)] = v[3 * k + size_t(a)];
+    return f;
+  }
+
+  std::vector<MeasureSample> measures() override {
+    std::vector<MeasureSample> m = inner_->measures();
+    std::vector<double> v;
+    for (size_t k = 0; k < m.size(); ++k)
+      for (int a = 0; a < 3; ++a) v.insert(v.end(), {measure_members_[k] * m[k].displacement[a], m[k].force[a]});
+    sum(v.data(), int(v.size()));
+    for (size_t k = 0; k < m.size(); ++k) {
+      const double w = measure_total_[k] > 0 ? 1.0 / measure_total_[k] : 0.0;
+      for (int a = 0; a < 3; ++a) {
+        m[k].displacement[a] = w * v[6 * k + 2 * size_t(a)];
+        m[k].force[a] = v[6 * k + 2 * size_t(a) + 1];
+      }
+    }
+    return m;
+  }
+
+  const StageTimers& timers() const override { return inner_->timers(); }
+  void reset_timers() override {
+    inner_->reset_timers();
+    exchange_->reset_counts();
+  }
+
+  // Particle counts of the whole scene; the pairs are every rank's rows,
+  // the ghosts' (cut) rows included.
+  SetupReport setup_report() const override {
+    SetupReport r = inner_->setup_report();
+    r.body_particles.clear();
+    for (double c : body_owned_) r.body_particles.push_back(long(c));
+    r.particles = std::accumulate(r.body_particles.begin(), r.body_particles.end(), 0L);
+    std::vector<double> v{double(r.pairs), double(r.regularized_corrections)};
+    sum(v.data(), 2);
+    r.pairs = long(v[0]);
+    r.regularized_corrections = long(v[1]);
+    r.mean_neighbors = r.particles ? double(r.pairs) / double(r.particles) : 0.0;
+    r.min_neighbors = long(reduce(double(r.min_neighbors), MPI_MIN));
+    r.max_neighbors = long(reduce(double(r.max_neighbors), MPI_MAX));
+    return r;
+  }
+
+  void save_state(StateArchive&) override {
+    throw UsageError("checkpoints of a distributed run are not written yet (docs/distributed.md)");
+  }
+  void restore_state(const StateArchive&) override {
+    throw UsageError("a distributed run does not continue from a checkpoint yet (docs/distributed.md)");
+  }
+  void attach_ghosts(std::shared_ptr<GhostExchange>) override {
+    throw std::logic_error("a distributed solver is not distributed again");
+  }
+
+  double bytes_sent() const { return exchange_->bytes_sent(); }
+
+ private:
+  // Every rank takes the smallest of the ranks' next steps (each is the
+  // method's own CFL bound over its owned particles, so the result is the
+  // single-process step).
+  void common_dt() { inner_->limit_next_dt(reduce(inner_->next_dt(), MPI_MIN)); }
+
+  // A numerical failure on this rank ends every rank with its message, the
+  // particle named by its id in the whole scene.
+  template <class F>
+  void guarded(F&& f) {
+    try {
+      f();
+    } catch (const NumericalFailure& e) {
+      const long id = e.particle_id();
+      const NumericalFailure global =
+          id >= 0 && size_t(id) < global_id_.size() ? e.renumbered(global_id_[size_t(id)]) : e;
+      MpiSession::abort("run stopped: " + std::string(global.what()), 3);
+    }
+  }
+
+  std::unique_ptr<Solver> inner_;
+  std::vector<long> global_id_;
+  std::vector<unsigned char> ghost_;
+  long owned_ = 0;
+  std::vector<double> probe_members_, probe_total_, measure_members_, measure_total_, body_owned_;
+  std::shared_ptr<MpiGhostExchange> exchange_;
+};
+
+class MpiDistribution final : public Distribution {
+ public:
+  int rank() const override { return world_rank(); }
+  int ranks() const override { return world_size(); }
+
+  void check(const Scene& scene) const override {
+    auto refuse = [](const std::string& path, const std::string& what) {
+      throw SceneError(path, what,
+                       "a scene without it on several processes (not distributed yet, docs/distributed.md)");
+    };
+    if (has_fracture_body(scene)) refuse("/bodies", "phase-field fracture");
+    if (scene.solver.relaxation.enabled) refuse("/solver/relaxation", "dynamic relaxation");
+    if (has_active_stress(scene)) refuse("/bodies", "an active stress");
+    if (scene.output.checkpoint_interval > 0) refuse("/output/checkpoint_interval", "checkpoints");
+    if (scene.contact.enabled) {
+      const size_t in_contact = scene.contact.bodies.empty() ? scene.bodies.size() : scene.contact.bodies.size();
+      if (in_contact >= 2) refuse("/contact/bodies", "contact between bodies");
+      if (!scene.contact.self_contact.empty()) refuse("/contact/self_contact", "self-contact");
+    }
+  }
+
+  InitialParticles local_particles(const Scene& scene, const InitialParticles& all) override {
+    part_ = distributed::local_part(all, rank(), ranks(), distributed::halo_radius(scene));
+    return part_.particles;
+  }
+
+  std::unique_ptr<Solver> distribute(std::unique_ptr<Solver> local) override {
+    exchange_ = std::make_shared<MpiGhostExchange>(part_);
+    local->attach_ghosts(exchange_);
+    return std::make_unique<DistributedSolver>(std::move(local), part_, exchange_);
+  }
+
+  bool any(bool flag) const override {
+    int f = flag ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &f, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    return f != 0;
+  }
+  void barrier() const override { MPI_Barrier(MPI_COMM_WORLD); }
+
+  void print_report(long steps) const override {
+    const int n = ranks();
+    const double ghosts = double(part_.global_id.size()) - double(part_.owned);
+    const double mine[4] = {double(part_.owned), ghosts, exchange_ ? exchange_->bytes_sent() : 0.0,
+                            exchange_ ? double(exchange_->exchanges()) : 0.0};
+    std::vector<double> all(size_t(4 * n));
+    MPI_Gather(mine, 4, MPI_DOUBLE, all.data(), 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    if (!root()) return;
+    std::printf("mfsd: rank   owned   ghosts   sent/step [kB]   exchanges/step (%d ranks, imbalance %.3f)\n", n,
+                part_.decomposition.imbalance());
+    for (int r = 0; r < n; ++r) {
+      const double* a = all.data() + 4 * r;
+      std::printf("mfsd: %4d %8.0f %8.0f %14.2f %12.2f\n", r, a[0], a[1], steps > 0 ? a[2] / double(steps) / 1e3 : 0.0,
+                  steps > 0 ? a[3] / double(steps) : 0.0);
+    }
+  }
+
+ private:
+  distributed::LocalPart part_;
+  std::shared_ptr<MpiGhostExchange> exchange_;
+};
+
+}  // namespace
+
+std::unique_ptr<Distribution> make_distribution() {
+  if (!g_initialized) return nullptr;
+  return std::make_unique<MpiDistribution>();
+}
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+  bool launched = false;
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK"})
+    launched = launched || std::getenv(name);
+  if (!launched) return;
+  MPI_Init(&argc, &argv);
+  g_initialized = true;
+}
+
+MpiSession::~MpiSession() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (g_initialized && !finalized) MPI_Finalize();
+}
+
+bool MpiSession::active() { return g_initialized; }
+int MpiSession::rank() { return g_initialized ? world_rank() : 0; }
+
+void MpiSession::abort(const std::string& message, int code) {
+  if (!g_initialized) {
+    if (!message.empty()) std::fprintf(stderr, "mfsd: %s\n", message.c_str());
+    std::exit(code);
+  }
+  if (!message.empty()) std::fprintf(stderr, "mfsd: rank %d of %d: %s\n", world_rank(), world_size(), message.c_str());
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+}  // namespace mfsd

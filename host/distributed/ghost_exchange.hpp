@@ -1,0 +1,34 @@
+// What a solver sees of a distributed run (issue 25, docs/distributed.md):
+// which of its particles are ghosts (copies of particles other ranks own) and
+// a transport that refreshes the ghosts' copies of a field from their owners.
+// Particles are named by local id, their index in the InitialParticles the
+// solver was made with; the solver maps ids to its own (reordered) indices.
+// No MPI here: the MPI transport implements this in mpi_ghost_exchange.cpp.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace mfsd {
+
+class GhostExchange {
+ public:
+  virtual ~GhostExchange() = default;
+  // Per local id: 1 where the particle is a ghost, 0 where this rank owns it.
+  virtual const std::vector<unsigned char>& ghost_mask() const = 0;
+  // The owned particles whose values go out, grouped by destination rank in
+  // rank order, and the ghosts that receive, grouped by source rank: local ids.
+  virtual const std::vector<long>& send_ids() const = 0;
+  virtual const std::vector<long>& receive_ids() const = 0;
+  // Per body: the box of its particles in the whole scene (lo[3], hi[3]), for
+  // the cell grid of the reference search (the single-process run's cells).
+  virtual const std::vector<double>& body_boxes() const = 0;
+  // One field's values: `send` holds the elements of send_ids() in order
+  // (element_bytes each); `receive` gets those of receive_ids(). Collective:
+  // every rank calls it for the same fields in the same order.
+  virtual void exchange(const std::vector<char>& send, size_t element_bytes, std::vector<char>& receive) = 0;
+  // The maxima over the ranks, element by element (the time step's statistics:
+  // the step is a function of the scene's max |v|, max |a|, max |F^-1| together).
+  virtual void max_over_ranks(std::vector<double>& values) = 0;
+};
+
+}  // namespace mfsd
