@@ -249,11 +249,12 @@ class DistributedSolver final : public Solver {
     return r;
   }
 
-  void save_state(StateArchive&) override {
-    throw UsageError("checkpoints of a distributed run are not written yet (docs/distributed.md)");
-  }
-  void restore_state(const StateArchive&) override {
-    throw UsageError("a distributed run does not continue from a checkpoint yet (docs/distributed.md)");
+  // This rank's particles, owned and ghosts (a continued run on as many
+  // ranks has the same parts: the cut is a function of the scene).
+  void save_state(StateArchive& archive) override { inner_->save_state(archive); }
+  void restore_state(const StateArchive& archive) override {
+    inner_->restore_state(archive);
+    exchange_->reset_counts();
   }
   void attach_ghosts(std::shared_ptr<GhostExchange>) override {
     throw std::logic_error("a distributed solver is not distributed again");
@@ -302,7 +303,6 @@ class MpiDistribution final : public Distribution {
     if (has_fracture_body(scene)) refuse("/bodies", "phase-field fracture");
     if (scene.solver.relaxation.enabled) refuse("/solver/relaxation", "dynamic relaxation");
     if (has_active_stress(scene)) refuse("/bodies", "an active stress");
-    if (scene.output.checkpoint_interval > 0) refuse("/output/checkpoint_interval", "checkpoints");
     if (scene.contact.enabled) {
       const size_t in_contact = scene.contact.bodies.empty() ? scene.bodies.size() : scene.contact.bodies.size();
       if (in_contact >= 2) refuse("/contact/bodies", "contact between bodies");

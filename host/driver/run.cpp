@@ -84,6 +84,8 @@ void remove_previous_outputs(const std::string& dir) {
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
   for (const char* c : {"checkpoint", "checkpoint.previous", "checkpoint.new"}) fs::remove_all(fs::path(dir) / c);
+  for (auto& e : fs::directory_iterator(dir))  // the other ranks' checkpoints of a distributed run
+    if (e.path().filename().string().rfind("checkpoint.rank", 0) == 0) fs::remove_all(e.path());
   for (auto& e : fs::directory_iterator(dir))
     if ((e.path().filename().string().rfind("measure_", 0) == 0 ||
          e.path().filename().string().rfind("crack_", 0) == 0) &&
@@ -123,20 +125,25 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   // Rank 0 writes the CSVs, run.json and the indices; every rank its snapshot pieces.
   const std::unique_ptr<Distribution> dist = make_distribution();
   const bool root = !dist || dist->root();
-  if (dist) {
-    dist->check(scene);
-    if (!options.restart.empty())
-      throw UsageError("a distributed run does not continue from a checkpoint yet (docs/distributed.md)");
-    if (options.checkpoint_every_minutes > 0)
-      throw UsageError("checkpoints of a distributed run are not written yet (docs/distributed.md)");
-  }
+  if (dist) dist->check(scene);
+  // Each rank's checkpoint: rank 0's in the run's checkpoint folder (with the
+  // outputs' positions), rank r's beside it in <folder>.rank<r>; a continued
+  // run reads them on the same number of ranks (the same parts).
+  auto rank_folder = [&](const std::string& folder) {
+    return dist && dist->rank() > 0 ? folder + ".rank" + std::to_string(dist->rank()) : folder;
+  };
   // Everything that can be wrong with the input is found before the folder is
   // made or, for a continued run, touched.
   std::optional<RestartPoint> restart;
   std::optional<CheckpointContents> saved;
   if (!options.restart.empty()) {
     restart = find_restart(options.restart, doc, options);
-    saved = read_checkpoint(restart->folder);
+    const long ranks = Json::parse(read_checkpoint_meta(restart->folder)).value("ranks", 1L);
+    if (ranks != (dist ? dist->ranks() : 1))
+      throw CheckpointError("checkpoint " + restart->folder + " was written by " + std::to_string(ranks) +
+                            " process(es); continue it on as many (this run has " +
+                            std::to_string(dist ? dist->ranks() : 1) + ")");
+    saved = read_checkpoint(rank_folder(restart->folder));
   }
   InitialParticles particles = generate_particles(scene);
   std::vector<size_t> measure_sizes;  // particles of each measure plane, in the whole scene
@@ -191,6 +198,9 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   if (restart) {
     solver->restore_state(saved->archive);
     saved.reset();  // the state is in the solver now
+    if (dist && dist->any(solver->steps() != restart->steps))
+      throw CheckpointError("the ranks' checkpoints in " + restart->output_dir +
+                            " are of different steps (a run stopped while writing them); no whole checkpoint");
     status.restarted_from = restart->folder;
     status.start_time = solver->time();
     status.start_steps = solver->steps();
@@ -262,8 +272,8 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   at.next_checkpoint = scene.output.checkpoint_interval;
   if (restart) {
     at = restart->position;
-    if (scene.output.vtu) pvd.restore(at.snapshots);
-    if (scene.output.vtu && !rigid.empty()) rigid_pvd.restore(at.rigid_snapshots);
+    if (scene.output.vtu && root) pvd.restore(at.snapshots);
+    if (scene.output.vtu && !rigid.empty() && root) rigid_pvd.restore(at.rigid_snapshots);
   }
   double output_seconds = 0;
   double last_snapshot_time = -1;
@@ -326,7 +336,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   };
 
   // A checkpoint of the state now and of where the outputs stand.
-  const bool checkpointing = !dist && (scene.output.checkpoint_interval > 0 || options.checkpoint_every_minutes > 0);
+  const bool checkpointing = scene.output.checkpoint_interval > 0 || options.checkpoint_every_minutes > 0;
   auto last_checkpoint_wall = Clock::now();
   auto write_checkpoint_now = [&] {
     at.snapshots = pvd.entries();
@@ -335,8 +345,9 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     for (auto& [name, w] : csv_files) at.csv_bytes[name] = w->bytes();
     StateArchive archive;
     solver->save_state(archive);
-    const Json meta = checkpoint_meta(doc, options, solver->time(), solver->steps(), at);
-    const CheckpointWriteReport r = write_checkpoint(checkpoint_folder(dir), meta.dump(), archive);
+    Json meta = checkpoint_meta(doc, options, solver->time(), solver->steps(), at);
+    if (dist) meta["ranks"] = dist->ranks();
+    const CheckpointWriteReport r = write_checkpoint(rank_folder(checkpoint_folder(dir)), meta.dump(), archive);
     ++status.checkpoints;
     status.checkpoint_bytes = double(r.bytes);
     status.checkpoint_seconds += r.seconds;
@@ -393,13 +404,15 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       if (snap || t >= at.next_probe - eps) write_outputs(snap);
       at.next_probe = next_multiple(at.next_probe, scene.output.probe_interval, t + eps);
       at.next_output = next_multiple(at.next_output, scene.output.interval, t + eps);
-      const bool checkpoint_due = (scene.output.checkpoint_interval > 0 && t >= at.next_checkpoint - eps) ||
-                                  (options.checkpoint_every_minutes > 0 &&
-                                   seconds_since(last_checkpoint_wall) >= 60.0 * options.checkpoint_every_minutes);
+      bool checkpoint_due = (scene.output.checkpoint_interval > 0 && t >= at.next_checkpoint - eps) ||
+                            (options.checkpoint_every_minutes > 0 &&
+                             seconds_since(last_checkpoint_wall) >= 60.0 * options.checkpoint_every_minutes);
+      if (dist && options.checkpoint_every_minutes > 0)
+        checkpoint_due = dist->any(checkpoint_due);  // wall clocks differ
       if (scene.output.checkpoint_interval > 0)
         at.next_checkpoint = next_multiple(at.next_checkpoint, scene.output.checkpoint_interval, t + eps);
-      const bool stops =
-          t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps) || interrupt_signal();
+      const bool stops = t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps) ||
+                         (dist ? dist->any(interrupt_signal() != 0) : interrupt_signal() != 0);
       if (checkpoint_due && !stops) write_checkpoint_now();  // a stop writes its own below
       progress.update(t, solver->steps());
     }
@@ -407,7 +420,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     const bool interrupted = dist ? dist->any(interrupt_signal() != 0) : interrupt_signal() != 0;
     // The checkpoint first: a continued run takes the CSVs and the PVD as they
     // are now, so the stop's last snapshot below is replaced by its own outputs.
-    if (checkpointing || (interrupted && !dist)) write_checkpoint_now();
+    if (checkpointing || interrupted) write_checkpoint_now();
     if (last_snapshot_time != solver->time()) write_outputs(true);  // a run stopped early (--max-steps, a signal)
     if (interrupted) {
       status.state = "interrupted";
@@ -440,7 +453,7 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
 
   result.steps = status.steps;
   result.time = status.simulated_time;
-  if (status.state == "interrupted" && root && !dist)
+  if (status.state == "interrupted" && root)
     std::fprintf(stderr,
                  "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: mfsd run %s "
                  "--restart %s\n",
