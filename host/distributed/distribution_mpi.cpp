@@ -57,6 +57,8 @@ class MpiGhostExchange final : public GhostExchange {
   const std::vector<unsigned char>& ghost_mask() const override { return mask_; }
   const std::vector<long>& send_ids() const override { return send_; }
   const std::vector<long>& receive_ids() const override { return receive_; }
+  const std::vector<int>& send_counts() const override { return send_counts_; }
+  const std::vector<int>& receive_counts() const override { return receive_counts_; }
   void exchange(const std::vector<char>& send, size_t element_bytes, std::vector<char>& receive) override {
     const size_t ranks = send_counts_.size();
     std::vector<int> sc(ranks), sd(ranks), rc(ranks), rd(ranks);

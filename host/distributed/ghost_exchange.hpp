@@ -19,12 +19,17 @@ class GhostExchange {
   // rank order, and the ghosts that receive, grouped by source rank: local ids.
   virtual const std::vector<long>& send_ids() const = 0;
   virtual const std::vector<long>& receive_ids() const = 0;
+  // How many of send_ids() go to each rank, and of receive_ids() come from each.
+  virtual const std::vector<int>& send_counts() const = 0;
+  virtual const std::vector<int>& receive_counts() const = 0;
   // Per body: the box of its particles in the whole scene (lo[3], hi[3]), for
   // the cell grid of the reference search (the single-process run's cells).
   virtual const std::vector<double>& body_boxes() const = 0;
-  // One field's values: `send` holds the elements of send_ids() in order
-  // (element_bytes each); `receive` gets those of receive_ids(). Collective:
-  // every rank calls it for the same fields in the same order.
+  // `send` holds element_bytes per particle of send_ids(), grouped by
+  // destination rank as they are; `receive` gets element_bytes per particle of
+  // receive_ids(), grouped by source rank (within a rank's block the layout is
+  // the caller's). Collective: every rank calls it for the same fields in the
+  // same order.
   virtual void exchange(const std::vector<char>& send, size_t element_bytes, std::vector<char>& receive) = 0;
   // The maxima over the ranks, element by element (the time step's statistics:
   // the step is a function of the scene's max |v|, max |a|, max |F^-1| together).

@@ -221,15 +221,45 @@ class ParticleSolver : public Solver {
   }
 
   // Distributed runs: the ghosts' copies of these fields (those registered)
-  // from their owners. Nothing in a single-process run.
+  // from their owners, in one message per pair of ranks (each rank's block
+  // holds the fields one after the other). Nothing in a single-process run.
   void refresh_ghosts(std::initializer_list<const char*> names) {
     if (!ghosts_) return;
-    for (const char* name : names) {
-      if (!particles_.has(name)) continue;
-      std::vector<char> received;
-      ghosts_->exchange(particles_.pack(name, ghost_send_index_), particles_.element_bytes(name), received);
-      particles_.unpack(name, ghost_receive_index_, received);
+    std::vector<std::string> fields;
+    std::vector<std::vector<char>> packed;
+    std::vector<size_t> size;  // bytes per element
+    for (const char* name : names)
+      if (particles_.has(name)) {
+        fields.push_back(name);
+        packed.push_back(particles_.pack(name, ghost_send_index_));
+        size.push_back(particles_.element_bytes(name));
+      }
+    if (fields.empty()) return;
+    size_t record = 0;
+    for (size_t s : size) record += s;
+    const std::vector<int>& sends = ghosts_->send_counts();
+    const std::vector<int>& receives = ghosts_->receive_counts();
+    std::vector<char> message;
+    message.reserve(ghosts_->send_ids().size() * record);
+    size_t first = 0;  // the rank's first element in send order
+    for (int count : sends) {
+      for (size_t f = 0; f < fields.size(); ++f) {
+        const char* p = packed[f].data() + first * size[f];
+        message.insert(message.end(), p, p + size_t(count) * size[f]);
+      }
+      first += size_t(count);
     }
+    std::vector<char> received;
+    ghosts_->exchange(message, record, received);
+    std::vector<std::vector<char>> unpacked(fields.size());
+    for (size_t f = 0; f < fields.size(); ++f) unpacked[f].reserve(ghosts_->receive_ids().size() * size[f]);
+    const char* p = received.data();
+    for (int count : receives)
+      for (size_t f = 0; f < fields.size(); ++f) {
+        unpacked[f].insert(unpacked[f].end(), p, p + size_t(count) * size[f]);
+        p += size_t(count) * size[f];
+      }
+    for (size_t f = 0; f < fields.size(); ++f) particles_.unpack(fields[f], ghost_receive_index_, unpacked[f]);
   }
 
   // Distributed runs: the time step's statistics over the whole scene.
