@@ -261,6 +261,7 @@ int main(int argc, char** argv) {
   }
   const int code = run_command(argc, argv);
   // A rank that stops with an error (printed above) ends every rank, whatever collective they wait in.
-  if (code != 0 && mfsd::MpiSession::active()) mfsd::MpiSession::abort("", code);
+  // (An interrupted run, 128 + signal, stopped on every rank at the same step: it ends normally.)
+  if (code != 0 && code < 128 && mfsd::MpiSession::active()) mfsd::MpiSession::abort("", code);
   return code;
 }

@@ -382,9 +382,10 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
       for (const auto& c : governor->changes()) status.thread_changes.emplace_back(c.step, c.threads);
     }
   };
+  bool stop_requested = stop_signal();
   try {
     while (solver->time() < end_time - eps && (options.max_steps <= 0 || solver->steps() < options.max_steps) &&
-           !stop_signal()) {
+           !stop_requested) {
       solver->limit_next_dt(end_time - solver->time());
       const auto t0 = Clock::now();
       solver->step();
@@ -411,8 +412,9 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
         checkpoint_due = dist->any(checkpoint_due);  // wall clocks differ
       if (scene.output.checkpoint_interval > 0)
         at.next_checkpoint = next_multiple(at.next_checkpoint, scene.output.checkpoint_interval, t + eps);
-      const bool stops = t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps) ||
-                         (dist ? dist->any(interrupt_signal() != 0) : interrupt_signal() != 0);
+      stop_requested = stop_signal();  // one agreement per step in a distributed run
+      const bool stops =
+          t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps) || stop_requested;
       if (checkpoint_due && !stops) write_checkpoint_now();  // a stop writes its own below
       progress.update(t, solver->steps());
     }
@@ -455,9 +457,10 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
   result.time = status.simulated_time;
   if (status.state == "interrupted" && root)
     std::fprintf(stderr,
-                 "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: mfsd run %s "
+                 "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: %smfsd run %s "
                  "--restart %s\n",
                  solver->time(), solver->steps(), status.checkpoint.c_str(),
+                 dist ? ("mpiexec -n " + std::to_string(dist->ranks()) + " ").c_str() : "",
                  doc.source_name.rfind('<', 0) == 0 ? "" : doc.source_name.c_str(), dir.c_str());
   if (!options.quiet && root) {
     char wall[32];
