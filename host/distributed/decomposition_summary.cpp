@@ -18,6 +18,10 @@ double halo_radius(const Scene& scene) {
       const RkpmSpec& k = scene.solver.rkpm;
       const double reach = k.box_supports ? std::sqrt(double(dim)) : 1.0;
       r = std::max(r, (k.support_factor * reach + 0.5 * std::sqrt(double(dim)) + k.skin) * b.spacing);
+    } else if (b.method == Method::ulsph) {
+      // The support and one h of skin: a distributed ULSPH run keeps its
+      // set-up's ghosts (docs/distributed.md).
+      r = std::max(r, 3.0 * scene.solver.h_over_dp * b.spacing);
     } else {
       r = std::max(r, 2.0 * scene.solver.h_over_dp * b.spacing);  // the kernels' support 2h
     }

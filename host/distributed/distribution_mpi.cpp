@@ -52,7 +52,9 @@ class MpiGhostExchange final : public GhostExchange {
         receive_(p.receive_ids),
         send_counts_(p.send_counts),
         receive_counts_(p.receive_counts),
-        boxes_(p.body_boxes) {}
+        boxes_(p.body_boxes),
+        global_(p.global_id) {}
+  long global_id(long local_id) const override { return global_[size_t(local_id)]; }
   const std::vector<double>& body_boxes() const override { return boxes_; }
   const std::vector<unsigned char>& ghost_mask() const override { return mask_; }
   const std::vector<long>& send_ids() const override { return send_; }
@@ -80,6 +82,24 @@ class MpiGhostExchange final : public GhostExchange {
   void max_over_ranks(std::vector<double>& values) override {
     MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   }
+  void sum_over_ranks(std::vector<double>& values) override { sum(values.data(), int(values.size())); }
+  std::vector<std::vector<double>> gather_all(const std::vector<double>& values) override {
+    const int ranks = int(send_counts_.size());
+    std::vector<int> counts(static_cast<size_t>(ranks)), displacements(static_cast<size_t>(ranks));
+    const int mine = int(values.size());
+    MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    int total = 0;
+    for (int r = 0; r < ranks; ++r) displacements[size_t(r)] = total, total += counts[size_t(r)];
+    std::vector<double> all(size_t(total) + 1);
+    MPI_Allgatherv(values.data(), mine, MPI_DOUBLE, all.data(), counts.data(), displacements.data(), MPI_DOUBLE,
+                   MPI_COMM_WORLD);
+    std::vector<std::vector<double>> out;
+    for (int r = 0; r < ranks; ++r)
+      out.emplace_back(all.begin() + displacements[size_t(r)],
+                       all.begin() + displacements[size_t(r)] + counts[size_t(r)]);
+    return out;
+  }
+  int rank() const override { return world_rank(); }
   double bytes_sent() const { return bytes_sent_; }
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
@@ -89,6 +109,7 @@ class MpiGhostExchange final : public GhostExchange {
   std::vector<long> send_, receive_;
   std::vector<int> send_counts_, receive_counts_;
   std::vector<double> boxes_;
+  std::vector<long> global_;
   double bytes_sent_ = 0;
   long exchanges_ = 0;
 };

@@ -34,6 +34,12 @@ class GhostExchange {
   // The maxima over the ranks, element by element (the time step's statistics:
   // the step is a function of the scene's max |v|, max |a|, max |F^-1| together).
   virtual void max_over_ranks(std::vector<double>& values) = 0;
+  virtual void sum_over_ranks(std::vector<double>& values) = 0;
+  // Every rank's `values` (of any length), in rank order.
+  virtual std::vector<std::vector<double>> gather_all(const std::vector<double>& values) = 0;
+  virtual int rank() const = 0;
+  // A particle's index in the whole scene.
+  virtual long global_id(long local_id) const = 0;
 };
 
 }  // namespace mfsd

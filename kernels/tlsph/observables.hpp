@@ -1,5 +1,6 @@
 // Output quantities: von Mises stress, J, energies.
 #pragma once
+#include "kernels/core/owned_only.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/materials/holzapfel_ogden.hpp"
 #include "kernels/materials/j2_plastic.hpp"
@@ -104,15 +105,6 @@ struct EnergySumsPlus {
                       a.surface + b.surface,
                       a.active + b.active};
   }
-};
-
-// A per-particle sum's term, zero for a ghost (a copy of another rank's
-// particle in a distributed run, docs/distributed.md; ghost null otherwise).
-template <class F>
-struct OwnedOnly {
-  F f;
-  const unsigned char* ghost;
-  MFSD_HD auto operator()(Index i) const -> decltype(f(i)) { return ghost && ghost[i] ? decltype(f(i)){} : f(i); }
 };
 
 // Kinetic 1/2 m v^2, strain energy V0 W(F), plastic work, momentum m v,

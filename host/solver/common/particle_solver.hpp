@@ -224,11 +224,23 @@ class ParticleSolver : public Solver {
   // from their owners, in one message per pair of ranks (each rank's block
   // holds the fields one after the other). Nothing in a single-process run.
   void refresh_ghosts(std::initializer_list<const char*> names) {
+    refresh_ghosts(std::vector<std::string>(names.begin(), names.end()));
+  }
+  // Every field but the local ids and the ghost flags (a method whose passes
+  // read partners' fields in many places: ULSPH).
+  void refresh_all_ghosts() {
+    if (!ghosts_) return;
+    std::vector<std::string> names;
+    for (const std::string& name : particles_.field_names())
+      if (name != field::id && name != field::ghost && name != field::reference_position_double) names.push_back(name);
+    refresh_ghosts(names);
+  }
+  void refresh_ghosts(const std::vector<std::string>& names) {
     if (!ghosts_) return;
     std::vector<std::string> fields;
     std::vector<std::vector<char>> packed;
     std::vector<size_t> size;  // bytes per element
-    for (const char* name : names)
+    for (const std::string& name : names)
       if (particles_.has(name)) {
         fields.push_back(name);
         packed.push_back(particles_.pack(name, ghost_send_index_));

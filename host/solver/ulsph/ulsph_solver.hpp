@@ -23,14 +23,17 @@
 #include <thrust/fill.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/solver/common/particle_solver.hpp"
+#include "kernels/core/owned_only.hpp"
 #include "kernels/core/step_statistics.hpp"
 #include "kernels/neighbors/bounding_box.hpp"
 #include "kernels/ulsph/current_pair_fill.hpp"
@@ -100,9 +103,16 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     // The first search sorts the particles by cell and, with solver.reorder,
     // permutes every field into that order (memory locality for the run);
     // later rebuilds keep the order and search through the cell order.
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) body_total_.push_back(double(owned_in(ranges_[b])));
+    if (this->ghosts_) this->ghosts_->sum_over_ranks(body_total_);  // the cell grid of the whole body
     boxes_ = host_boxes();
+    globalize_boxes();
     rebuild(scene_.solver.reorder);
     particles_.remove(field::reference_position_double);
+    // Distributed runs: the exchange in the sorted order, and the ghosts'
+    // B and pair densities (their rows are cut) from their owners.
+    this->bind_ghosts();
+    this->refresh_all_ghosts();
 
     snapshot_fields_ = {{"von_mises", field::von_mises},
                         {"J", field::jacobian},
@@ -118,19 +128,26 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
     if (scene_.contact.enabled) {
       // Every particle of a body in contact is a candidate: its surface moves.
-      this->setup_contact(std::vector<unsigned char>(size_t(n), 1));
+      std::vector<unsigned char> candidate(size_t(n), 1);
+      if (this->ghosts_) {  // distributed runs: contact acts on owned particles (walls, rigid bodies)
+        const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
+        for (size_t i = 0; i < candidate.size(); ++i) candidate[i] = ghost[i] ? 0 : 1;
+      }
+      this->setup_contact(std::move(candidate));
     }
     this->locate_probes(where);
     results_.clear();
     conditions_.apply_initial(this->kinematics(), results_);
     results_.fetch();
     conditions_.collect(results_, this->kinematics());
+    this->refresh_all_ghosts();
 
     // Initial stress (rho = rho0: p = 0, tau = 0) and the first time step.
     for (size_t b = 0; b < scene_.bodies.size(); ++b) gravity_at_start_.push_back(energy(b).gravity);
-    const StepStatistics<Real> stats =
+    StepStatistics<Real> stats =
         transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
                             StepStatisticsCombine<Real>{});
+    this->maxima_over_ranks(stats);  // distributed runs: the whole scene's
     advection_step_ = advection_step(stats);
     dt_next_ = std::min(acoustic_step(stats), advection_step_);
 
@@ -160,6 +177,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
         parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
     });
     if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
+    halo();
     const PairList<D, Real> pairs = pair_list();
     if (refresh)  // pair data, B and the density half step in one pass over the rows
       run("half_step", [&] { refresh_half_step(half_dt); });
@@ -167,9 +185,11 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       run("half_step", [&] {
         parallel_for<B>(n, ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
       });
+    halo();
     run("stress", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) stress(b, pairs, Real(dt));
     });
+    halo();
     run("force", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) force(b, pairs, Real(dt));
       parallel_for<B>(n, ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
@@ -185,6 +205,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     const Kinematics<D, Real> k = this->kinematics();
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
+    halo();
     ResultSlot<StepStatistics<Real>> stats_slot;
     std::vector<ResultSlot<BoundingBox<D, Real>>> box_slots;
     run("advance", [&] {
@@ -198,12 +219,15 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
         box_slots.push_back(results_.reduce(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
                                             BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{}));
     });
+    halo();
     run("time_step", [&] {
       results_.fetch();
       conditions_.collect(results_, k);
       contact_.collect(results_);
-      const StepStatistics<Real> stats = results_.get(stats_slot);
+      StepStatistics<Real> stats = results_.get(stats_slot);
+      this->maxima_over_ranks(stats);  // distributed runs: the whole scene's
       for (size_t b = 0; b < box_slots.size(); ++b) boxes_[b] = results_.get(box_slots[b]);
+      globalize_boxes();
       time_ += dt;
       ++steps_;
       if (stats.first_bad < n) fail(stats.first_bad);
@@ -273,6 +297,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     advection_travelled_ = a.has("ulsph/advection_travelled") ? a.get_value<double>("ulsph/advection_travelled") : 0;
     rebuild_due_ = a.get_value<long>("ulsph/rebuild_due") != 0;
     boxes_ = host_boxes();
+    globalize_boxes();
     const auto offsets = a.get<PairIndex>("ulsph/offsets", long(particles_.size()) + 1);
     pairs_ = offsets.back();
     from_host<B>(offsets, offsets_);
@@ -337,11 +362,12 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
         hi[a] = std::max(lo[a], double(boxes_[b].hi.v[a]));
         cells *= std::floor((hi[a] - lo[a]) / cell) + 1;
       }
-      const double limit = std::max(64.0, kCellsPerParticle * double(search_[b].range.size()));
+      const double limit = std::max(64.0, kCellsPerParticle * body_total_[b]);
       if (cells > limit) cell *= std::pow(cells / limit, 1.0 / D);
       grids.push_back(make_cell_grid<D, Real>(lo, hi, cell, first));
       first += grids.back().cells;
     }
+    if (this->ghosts_ && !reorder) check_fixed_halo();
     sort_into_cells<B, D, Real>(particles_, field::current_position, grids, reorder, cells_);
     CellNeighborhood<D, Real> hood = cell_neighborhood<B, D, Real>(particles_, field::current_position, cells_);
     pairs_ = count_pairs<B, D, Real>(hood, search_, n, count_, offsets_);
@@ -364,6 +390,102 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (reorder)  // at set-up: how many particles have too few neighbours for B
       fallback_count_ =
           long(thrust::count(BackendTraits<B>::policy(), fallback_.begin(), fallback_.end(), (unsigned char)1));
+  }
+
+  bool ghosts_supported() const override { return true; }
+
+  // Distributed runs: the ghosts' copies of every field after a pass whose
+  // pair sums their cut rows got wrong (docs/distributed.md).
+  void halo() {
+    if (this->ghosts_) run("halo", [&] { this->refresh_all_ghosts(); });
+  }
+
+  Index owned_in(const BodyRange& r) {
+    if (!this->ghosts_) return r.size();
+    const auto& mask = this->ghosts_->ghost_mask();  // by local id: the ranges hold the same particles
+    Index owned = 0;
+    for (Index i = r.begin; i < r.end; ++i) owned += mask[size_t(i)] ? 0 : 1;
+    return owned;
+  }
+
+  // Distributed runs: the boxes of the whole bodies (every rank's cells are
+  // the single-process run's).
+  void globalize_boxes() {
+    if (!this->ghosts_) return;
+    std::vector<double> v;
+    for (const auto& box : boxes_)
+      for (int a = 0; a < D; ++a) v.push_back(-double(box.lo.v[a])), v.push_back(double(box.hi.v[a]));
+    this->ghosts_->max_over_ranks(v);
+    size_t k = 0;
+    for (auto& box : boxes_)
+      for (int a = 0; a < D; ++a) box.lo.v[a] = Real(-v[k++]), box.hi.v[a] = Real(v[k++]);
+  }
+
+  // Distributed ULSPH keeps the ghosts of set-up (a halo one h wider than
+  // the support) and migrates nothing. Every search checks that none of
+  // this rank's particles has come within the support of another rank's
+  // particles without being its ghost there: the ranks share the cells (a
+  // quarter of the support wide) that their owned particles occupy, and a
+  // particle within the support of another rank's cell must be in what it
+  // sends that rank (a cell's extent makes this conservative by 0.35 of the
+  // support in 2-D, which the halo's extra h covers at set-up). A run
+  // whose bodies deform more stops here with a message rather than miss pairs.
+  void check_fixed_halo() {
+    const Index n = particles_.size();
+    double support = 0;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) support = std::max(support, 2.0 * props(b).h);
+    const double cell = 0.25 * support;
+    const int reach = 5;  // cells within the support of a point: 4, and the point's own cell
+    const auto x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
+    const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    auto cell_of = [&](Index i) {
+      std::array<double, 3> c{0, 0, 0};
+      for (int a = 0; a < D; ++a) c[size_t(a)] = std::floor(double(x[size_t(i)].v[a]) / cell);
+      return c;
+    };
+    std::set<std::array<double, 3>> mine;
+    for (Index i = 0; i < n; ++i)
+      if (!ghost[size_t(i)]) mine.insert(cell_of(i));
+    std::vector<double> flat;
+    for (const auto& c : mine) flat.insert(flat.end(), c.begin(), c.end());
+    const std::vector<std::vector<double>> cells = this->ghosts_->gather_all(flat);
+    const int ranks = int(cells.size()), me = this->ghosts_->rank();
+    const auto send = to_host<B>(this->ghost_send_index_);
+    const auto& counts = this->ghosts_->send_counts();
+    std::vector<unsigned char> sent(static_cast<size_t>(n));
+    size_t k = 0;
+    for (int r = 0; r < ranks; ++r) {
+      std::fill(sent.begin(), sent.end(), 0);
+      for (int c = 0; c < counts[size_t(r)]; ++c) sent[size_t(send[k++])] = 1;
+      if (r == me) continue;
+      std::set<std::array<double, 3>> theirs;
+      for (size_t c = 0; c + 2 < cells[size_t(r)].size(); c += 3)
+        theirs.insert({cells[size_t(r)][c], cells[size_t(r)][c + 1], cells[size_t(r)][c + 2]});
+      for (Index i = 0; i < n; ++i) {
+        if (ghost[size_t(i)] || sent[size_t(i)]) continue;
+        const std::array<double, 3> c = cell_of(i);
+        bool near = false;
+        for (int dx = -reach; dx <= reach && !near; ++dx)
+          for (int dy = -reach; dy <= reach && !near; ++dy)
+            for (int dz = (D == 3 ? -reach : 0); dz <= (D == 3 ? reach : 0) && !near; ++dz) {
+              const std::array<double, 3> o{c[0] + dx, c[1] + dy, c[2] + dz};
+              if (!theirs.count(o)) continue;
+              double d2 = 0;  // from the particle to the cell
+              for (int a = 0; a < D; ++a) {
+                const double v = double(x[size_t(i)].v[a]), lo = o[size_t(a)] * cell;
+                const double d = std::max({lo - v, v - (lo + cell), 0.0});
+                d2 += d * d;
+              }
+              near = d2 < support * support;
+            }
+        if (near)
+          throw UsageError("a distributed ULSPH run keeps the ghosts of its set-up, and particle " +
+                           std::to_string(this->ghosts_->global_id(long(ids[size_t(i)]))) + " has come next to rank " +
+                           std::to_string(r) + "'s particles at t = " + std::to_string(time_) +
+                           " s: the deformation needs migration, which is not built (docs/distributed.md)");
+      }
+    }
   }
 
   // x = X + u into current_position and V = m / rho into current_volume.
@@ -498,11 +620,13 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   ulsph::EnergySums energy(size_t b) {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
+    using Energy = ulsph::EnergyFunctor<D, Real>;
     return transform_reduce<B>(
         ranges_[b].begin, ranges_[b].end,
-        ulsph::EnergyFunctor<D, Real>{velocity(), displacement(), real(field::mass), real(field::density),
-                                      real(field::pressure), mat(field::shear_stress), real(field::dissipated_work),
-                                      optional(field::plastic_work), props(b).K, props(b).G, g},
+        OwnedOnly<Energy>{Energy{velocity(), displacement(), real(field::mass), real(field::density),
+                                 real(field::pressure), mat(field::shear_stress), real(field::dissipated_work),
+                                 optional(field::plastic_work), props(b).K, props(b).G, g},
+                          this->ghost_flags()},
         ulsph::EnergySums{0, 0, {0, 0, 0}, 0, 0, 0}, ulsph::EnergySumsPlus{});
   }
 
@@ -514,6 +638,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   StepStatisticsFunctor<D, Real> statistics_functor() {
     StepStatisticsFunctor<D, Real> f{reference(), displacement(),   velocity(), acceleration(), nullptr, nullptr, {},
                                      {},          particles_.size()};
+    f.ghost = this->ghost_flags();
     for (int a = 0; a < D; ++a) {
       f.lower.v[a] = Real(scene_.bounds.min[a]);
       f.upper.v[a] = Real(scene_.bounds.max[a]);
@@ -562,6 +687,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   long fallback_count_ = 0;
   bool has_loads_ = false;
   bool rebuild_due_ = false;
+  std::vector<double> body_total_;  // particles of each body in the whole scene (distributed runs: all ranks')
   double advection_step_ = 0, advection_elapsed_ = 0;
   double advection_travelled_ = 0;  // sum dt |v|max since the last search
   std::vector<double> gravity_at_start_;
