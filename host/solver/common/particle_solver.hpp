@@ -415,6 +415,13 @@ class ParticleSolver : public Solver {
   void setup_contact(std::vector<unsigned char> near_surface) {
     const ContactSpec& spec = scene_.contact;
     if (!spec.enabled) return;
+    // Distributed runs: contact acts on owned particles (walls and rigid
+    // bodies; the scene check refuses contact between bodies there).
+    if (ghosts_) {
+      const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
+      for (size_t i = 0; i < near_surface.size(); ++i)
+        if (ghost[i]) near_surface[i] = 0;
+    }
     contact_part_ = ContactPartSetup<Real>{
         {}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(kinematic_volume_)), std::move(near_surface)};
     size_t in_contact = 0;

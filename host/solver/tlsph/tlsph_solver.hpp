@@ -235,13 +235,6 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
           if (!full && surface(neighbor[k])) near_surface[size_t(i)] = 1;
         }
       }
-      // Distributed runs: contact acts on owned particles (walls and rigid
-      // bodies; the scene check refuses contact between bodies there).
-      if (v_.ghost) {
-        const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
-        for (Index i = 0; i < n; ++i)
-          if (ghost[size_t(i)]) near_surface[size_t(i)] = 0;
-      }
       this->setup_contact(std::move(near_surface));
     }
     {

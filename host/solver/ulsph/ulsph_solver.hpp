@@ -128,12 +128,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
     if (scene_.contact.enabled) {
       // Every particle of a body in contact is a candidate: its surface moves.
-      std::vector<unsigned char> candidate(size_t(n), 1);
-      if (this->ghosts_) {  // distributed runs: contact acts on owned particles (walls, rigid bodies)
-        const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
-        for (size_t i = 0; i < candidate.size(); ++i) candidate[i] = ghost[i] ? 0 : 1;
-      }
-      this->setup_contact(std::move(candidate));
+      this->setup_contact(std::vector<unsigned char>(size_t(n), 1));
     }
     this->locate_probes(where);
     results_.clear();
