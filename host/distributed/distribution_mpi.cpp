@@ -12,10 +12,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
+#include <unordered_map>
 
 #include "host/distributed/decomposition_summary.hpp"
 #include "host/distributed/distribution.hpp"
 #include "host/distributed/local_part.hpp"
+#include "host/distributed/migration.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/solver/numerical_failure.hpp"
 
@@ -42,19 +44,36 @@ double reduce(double value, MPI_Op op) {
   return value;
 }
 
+// The lists of particles (conditions, clamps, probes, measure planes) of `p`.
+InitialParticles only_lists(const InitialParticles& p) {
+  InitialParticles l;
+  l.dimension = p.dimension;
+  l.probe_particles = p.probe_particles;
+  l.clamp_particles = p.clamp_particles;
+  l.measure_particles = p.measure_particles;
+  l.condition_particles = p.condition_particles;
+  return l;
+}
+
 // Host staging: the solver packs and unpacks on its backend; the bytes of a
 // refresh go in one message to each rank that shares a halo with this one (a
 // GPU-aware library could take device buffers).
 class MpiGhostExchange final : public GhostExchange {
  public:
-  explicit MpiGhostExchange(const distributed::LocalPart& p)
+  // `scene_lists`: the whole scene's lists of particles (by global index).
+  MpiGhostExchange(const distributed::LocalPart& p, InitialParticles scene_lists)
       : mask_(p.ghost),
         send_(p.send_ids),
         receive_(p.receive_ids),
         send_counts_(p.send_counts),
         receive_counts_(p.receive_counts),
         boxes_(p.body_boxes),
-        global_(p.global_id) {}
+        global_(p.global_id),
+        lists_(only_lists(p.particles)),
+        probe_members_(p.probe_members),
+        measure_members_(p.measure_members),
+        scene_lists_(std::move(scene_lists)),
+        decomposition_(p.decomposition) {}
   long global_id(long local_id) const override { return global_[size_t(local_id)]; }
   const std::vector<double>& body_boxes() const override { return boxes_; }
   const std::vector<unsigned char>& ghost_mask() const override { return mask_; }
@@ -114,9 +133,146 @@ class MpiGhostExchange final : public GhostExchange {
   }
   int rank() const override { return world_rank(); }
   double bytes_sent() const { return bytes_sent_; }
-  static constexpr int kTag = 25;
+  static constexpr int kTag = 25, kMigrationTag = 26;
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
+
+  Arrivals migrate(const std::vector<long>& owned, const std::vector<std::array<double, 3>>& position,
+                   const std::vector<char>& records, size_t record_bytes, double radius) override {
+    const int ranks = int(send_counts_.size()), me = rank();
+    // Every rank's owned particles: global index and position.
+    std::vector<double> mine;
+    mine.reserve(owned.size() * 4);
+    for (size_t k = 0; k < owned.size(); ++k)
+      mine.insert(mine.end(), {double(global_id(owned[k])), position[k][0], position[k][1], position[k][2]});
+    const std::vector<std::vector<double>> all = gather_all(mine);
+    size_t total = 0;
+    for (const auto& a : all) total += a.size() / 4;
+    std::vector<distributed::Point> points(total);
+    std::vector<int> old_owner(total, -1);
+    for (int r = 0; r < ranks; ++r)
+      for (size_t k = 0; k + 3 < all[size_t(r)].size(); k += 4) {
+        const size_t g = size_t(all[size_t(r)][k]);
+        if (g >= total || old_owner[g] >= 0) throw std::logic_error("migration: the ranks' owned particles overlap");
+        old_owner[g] = r;
+        points[g] = {all[size_t(r)][k + 1], all[size_t(r)][k + 2], all[size_t(r)][k + 3]};
+      }
+    distributed::Repartition next = distributed::repartition(decomposition_, points, radius);
+    const std::vector<std::vector<long>> held = distributed::holdings(next);
+    // Records out: to each rank, those of its holdings owned here, ascending.
+    std::unordered_map<long, size_t> slot;
+    for (size_t k = 0; k < owned.size(); ++k) slot[global_id(owned[k])] = k;
+    std::vector<std::vector<char>> out(static_cast<size_t>(ranks));
+    for (int q = 0; q < ranks; ++q)
+      for (long g : held[size_t(q)])
+        if (old_owner[size_t(g)] == me) {
+          const char* r = records.data() + slot.at(g) * record_bytes;
+          out[size_t(q)].insert(out[size_t(q)].end(), r, r + record_bytes);
+        }
+    // In: this rank's holdings, grouped by their old owner.
+    Arrivals a;
+    std::vector<size_t> from(static_cast<size_t>(ranks), 0);
+    for (int q = 0; q < ranks; ++q)
+      for (long g : held[size_t(me)])
+        if (old_owner[size_t(g)] == q) {
+          a.global_id.push_back(g);
+          a.ghost.push_back(next.owner[size_t(g)] != me ? 1 : 0);
+          from[size_t(q)] += record_bytes;
+        }
+    a.records.resize(a.global_id.size() * record_bytes);
+    std::vector<MPI_Request> requests;
+    size_t at = 0;
+    for (int q = 0; q < ranks; ++q) {
+      if (q == me)
+        std::copy(out[size_t(q)].begin(), out[size_t(q)].end(), a.records.begin() + long(at));
+      else if (from[size_t(q)] > 0) {
+        requests.emplace_back();
+        MPI_Irecv(a.records.data() + at, int(from[size_t(q)]), MPI_BYTE, q, kMigrationTag, MPI_COMM_WORLD,
+                  &requests.back());
+      }
+      at += from[size_t(q)];
+    }
+    for (int q = 0; q < ranks; ++q)
+      if (q != me && !out[size_t(q)].empty()) {
+        requests.emplace_back();
+        MPI_Isend(out[size_t(q)].data(), int(out[size_t(q)].size()), MPI_BYTE, q, kMigrationTag, MPI_COMM_WORLD,
+                  &requests.back());
+        migrated_bytes_ += double(out[size_t(q)].size());
+      }
+    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    ++migrations_;
+    if (next.rebalanced) ++rebalances_;
+    decomposition_ = next.decomposition;
+    owner_ = std::move(next.owner);
+    halo_ = std::move(next.halo);
+    return a;
+  }
+
+  void adopt(const std::vector<long>& global_id) override {
+    const int ranks = int(send_counts_.size()), me = rank();
+    global_ = global_id;
+    std::unordered_map<long, long> local_of;
+    mask_.assign(global_.size(), 0);
+    for (size_t i = 0; i < global_.size(); ++i) {
+      local_of[global_[i]] = long(i);
+      mask_[i] = owner_[size_t(global_[i])] != me ? 1 : 0;
+    }
+    // The plan as local_part.cpp makes it: rank q's ghosts owned here in
+    // halo[q]'s order, this rank's ghosts from q in halo[me]'s.
+    send_.clear();
+    receive_.clear();
+    send_counts_.assign(size_t(ranks), 0);
+    receive_counts_.assign(size_t(ranks), 0);
+    for (int q = 0; q < ranks; ++q) {
+      if (q == me) continue;
+      for (size_t g : halo_[size_t(q)])
+        if (owner_[g] == me) {
+          send_.push_back(local_of.at(long(g)));
+          ++send_counts_[size_t(q)];
+        }
+      for (size_t g : halo_[size_t(me)])
+        if (owner_[g] == q) {
+          receive_.push_back(local_of.at(long(g)));
+          ++receive_counts_[size_t(q)];
+        }
+    }
+    distributed::map_lists(scene_lists_, local_of, mask_, lists_, probe_members_, measure_members_);
+    ++generation_;
+  }
+
+  // The membership of a checkpoint written after a migration (collective):
+  // the owners and halos from every rank's owned and ghost particles, then
+  // the plan as after that migration.
+  void restore_membership(const std::vector<long>& global, const std::vector<unsigned char>& ghost,
+                          const distributed::Decomposition& d) {
+    std::vector<double> owned, ghosts;
+    for (size_t i = 0; i < global.size(); ++i) (ghost[i] ? ghosts : owned).push_back(double(global[i]));
+    const std::vector<std::vector<double>> all_owned = gather_all(owned), all_ghosts = gather_all(ghosts);
+    size_t total = 0;
+    for (const auto& o : all_owned) total += o.size();
+    owner_.assign(total, -1);
+    halo_.assign(all_owned.size(), {});
+    for (size_t r = 0; r < all_owned.size(); ++r) {
+      for (double g : all_owned[r]) owner_.at(size_t(g)) = int(r);
+      for (double g : all_ghosts[r]) halo_[r].push_back(size_t(g));
+      std::sort(halo_[r].begin(), halo_[r].end());
+    }
+    if (std::count(owner_.begin(), owner_.end(), -1) > 0)
+      throw StateMismatch("the ranks' checkpoints do not own every particle once (of different runs?)");
+    decomposition_ = d;
+    adopt(global);
+  }
+  const std::vector<long>& global_ids() const { return global_; }
+
+  const InitialParticles& lists() const override { return lists_; }
+  const std::vector<long>& probe_members() const { return probe_members_; }
+  const std::vector<long>& measure_members() const { return measure_members_; }
+  const distributed::Decomposition& decomposition() const { return decomposition_; }
+  // Changes with every adopt(): the solver below refreshes its copies.
+  long generation() const { return generation_; }
+  long migrations() const { return migrations_; }
+  long rebalances() const { return rebalances_; }
+  double migrated_bytes() const { return migrated_bytes_; }
 
  private:
   std::vector<unsigned char> mask_;
@@ -124,28 +280,29 @@ class MpiGhostExchange final : public GhostExchange {
   std::vector<int> send_counts_, receive_counts_;
   std::vector<double> boxes_;
   std::vector<long> global_;
-  double bytes_sent_ = 0;
-  long exchanges_ = 0;
+  InitialParticles lists_;  // by local id, owned members
+  std::vector<long> probe_members_, measure_members_;
+  InitialParticles scene_lists_;  // by global index
+  distributed::Decomposition decomposition_;
+  std::vector<int> owner_;                      // per global index, after a migration
+  std::vector<std::vector<std::size_t>> halo_;  // per rank, after a migration
+  double bytes_sent_ = 0, migrated_bytes_ = 0;
+  long exchanges_ = 0, generation_ = 0, migrations_ = 0, rebalances_ = 0;
 };
 
 class DistributedSolver final : public Solver {
  public:
   DistributedSolver(std::unique_ptr<Solver> inner, const distributed::LocalPart& part,
                     std::shared_ptr<MpiGhostExchange> exchange)
-      : inner_(std::move(inner)),
-        global_id_(part.global_id),
-        ghost_(part.ghost),
-        owned_(part.owned),
-        exchange_(std::move(exchange)) {
-    for (long m : part.probe_members) probe_members_.push_back(double(m));
-    for (long m : part.measure_members) measure_members_.push_back(double(m));
+      : inner_(std::move(inner)), exchange_(std::move(exchange)) {
+    follow_membership();
     probe_total_ = probe_members_;
     measure_total_ = measure_members_;
     sum(probe_total_.data(), int(probe_total_.size()));
     sum(measure_total_.data(), int(measure_total_.size()));
     body_owned_.assign(part.particles.body_range.size(), 0.0);
-    for (size_t i = 0; i < ghost_.size(); ++i)
-      if (!ghost_[i]) body_owned_[size_t(part.particles.body[i])] += 1;
+    for (size_t i = 0; i < part.ghost.size(); ++i)
+      if (!part.ghost[i]) body_owned_[size_t(part.particles.body[i])] += 1;
     sum(body_owned_.data(), int(body_owned_.size()));
   }
 
@@ -156,6 +313,7 @@ class DistributedSolver final : public Solver {
   }
   void step() override {
     guarded([&] { inner_->step(); });
+    follow_membership();
     common_dt();
   }
   void limit_next_dt(double dt_max) override { inner_->limit_next_dt(dt_max); }
@@ -168,12 +326,13 @@ class DistributedSolver final : public Solver {
     const Snapshot all = inner_->snapshot();
     Snapshot s;
     std::vector<size_t> keep;
+    const std::vector<unsigned char>& ghost = exchange_->ghost_mask();
     for (size_t k = 0; k < all.n; ++k)
-      if (!ghost_[size_t(all.id[k])]) keep.push_back(k);
+      if (!ghost[size_t(all.id[k])]) keep.push_back(k);
     s.n = keep.size();
     for (const auto& f : all.fields) s.fields.push_back({f.name, {}});
     for (size_t k : keep) {
-      s.id.push_back(global_id_[size_t(all.id[k])]);
+      s.id.push_back(exchange_->global_id(long(all.id[k])));
       s.body.push_back(all.body[k]);
       s.constrained.push_back(all.constrained[k]);
       for (int a = 0; a < 3; ++a) {
@@ -288,9 +447,27 @@ class DistributedSolver final : public Solver {
 
   // This rank's particles, owned and ghosts (a continued run on as many
   // ranks has the same parts: the cut is a function of the scene).
-  void save_state(StateArchive& archive) override { inner_->save_state(archive); }
+  // With the membership (particles by global index, ghost flags) and the
+  // cuts, which change when particles migrate (ULSPH): a continued run
+  // takes them back before its solver reads the fields.
+  void save_state(StateArchive& archive) override {
+    inner_->save_state(archive);
+    archive.put("distributed/global_id", exchange_->global_ids());
+    archive.put("distributed/ghost", exchange_->ghost_mask());
+    archive.put("distributed/decomposition", distributed::to_numbers(exchange_->decomposition()));
+  }
   void restore_state(const StateArchive& archive) override {
+    if (archive.has("distributed/global_id")) {
+      const auto global = archive.get<long>("distributed/global_id");
+      const auto ghost = archive.get<unsigned char>("distributed/ghost", long(global.size()));
+      if (reduce(global != exchange_->global_ids() ? 1.0 : 0.0, MPI_MAX) > 0) {
+        exchange_->restore_membership(
+            global, ghost, distributed::decomposition_from(archive.get<double>("distributed/decomposition")));
+        inner_->expect_particles(long(global.size()));
+      }
+    }
     inner_->restore_state(archive);
+    follow_membership();
     exchange_->reset_counts();
   }
   void attach_ghosts(std::shared_ptr<GhostExchange>) override {
@@ -314,14 +491,24 @@ class DistributedSolver final : public Solver {
     } catch (const NumericalFailure& e) {
       const long id = e.particle_id();
       const NumericalFailure global =
-          id >= 0 && size_t(id) < global_id_.size() ? e.renumbered(global_id_[size_t(id)]) : e;
+          id >= 0 && size_t(id) < exchange_->ghost_mask().size() ? e.renumbered(exchange_->global_id(id)) : e;
       MpiSession::abort("run stopped: " + std::string(global.what()), 3);
     }
   }
 
+  // The owned count and the probes' and planes' members here, again after a
+  // migration has moved particles between the ranks.
+  void follow_membership() {
+    if (generation_ == exchange_->generation()) return;
+    generation_ = exchange_->generation();
+    const auto& ghost = exchange_->ghost_mask();
+    owned_ = long(std::count(ghost.begin(), ghost.end(), (unsigned char)0));
+    probe_members_.assign(exchange_->probe_members().begin(), exchange_->probe_members().end());
+    measure_members_.assign(exchange_->measure_members().begin(), exchange_->measure_members().end());
+  }
+
   std::unique_ptr<Solver> inner_;
-  std::vector<long> global_id_;
-  std::vector<unsigned char> ghost_;
+  long generation_ = -1;
   long owned_ = 0;
   std::vector<double> probe_members_, probe_total_, measure_members_, measure_total_, body_owned_;
   std::shared_ptr<MpiGhostExchange> exchange_;
@@ -340,20 +527,31 @@ class MpiDistribution final : public Distribution {
     if (has_fracture_body(scene)) refuse("/bodies", "phase-field fracture");
     if (scene.solver.relaxation.enabled) refuse("/solver/relaxation", "dynamic relaxation");
     if (has_active_stress(scene)) refuse("/bodies", "an active stress");
+    // Contact between bodies and self-contact need the current
+    // configuration's neighbours on other ranks as ghosts: ULSPH's migrating
+    // halo holds them; TLSPH's ghosts are those of the reference configuration.
     if (scene.contact.enabled) {
+      bool lagrangian = false;
+      for (const BodySpec& b : scene.bodies)
+        if ((scene.contact.bodies.empty() || std::find(scene.contact.bodies.begin(), scene.contact.bodies.end(),
+                                                       b.name) != scene.contact.bodies.end()) &&
+            b.method != Method::ulsph)
+          lagrangian = true;
       const size_t in_contact = scene.contact.bodies.empty() ? scene.bodies.size() : scene.contact.bodies.size();
-      if (in_contact >= 2) refuse("/contact/bodies", "contact between bodies");
-      if (!scene.contact.self_contact.empty()) refuse("/contact/self_contact", "self-contact");
+      if (lagrangian && in_contact >= 2) refuse("/contact/bodies", "contact between total-Lagrangian bodies");
+      if (lagrangian && !scene.contact.self_contact.empty())
+        refuse("/contact/self_contact", "self-contact of total-Lagrangian bodies");
     }
   }
 
   InitialParticles local_particles(const Scene& scene, const InitialParticles& all) override {
     part_ = distributed::local_part(all, rank(), ranks(), distributed::halo_radius(scene));
+    scene_lists_ = only_lists(all);
     return part_.particles;
   }
 
   std::unique_ptr<Solver> distribute(std::unique_ptr<Solver> local) override {
-    exchange_ = std::make_shared<MpiGhostExchange>(part_);
+    exchange_ = std::make_shared<MpiGhostExchange>(part_, std::move(scene_lists_));
     local->attach_ghosts(exchange_);
     return std::make_unique<DistributedSolver>(std::move(local), part_, exchange_);
   }
@@ -367,23 +565,33 @@ class MpiDistribution final : public Distribution {
 
   void print_report(long steps) const override {
     const int n = ranks();
-    const double ghosts = double(part_.global_id.size()) - double(part_.owned);
-    const double mine[4] = {double(part_.owned), ghosts, exchange_ ? exchange_->bytes_sent() : 0.0,
-                            exchange_ ? double(exchange_->exchanges()) : 0.0};
-    std::vector<double> all(size_t(4 * n));
-    MPI_Gather(mine, 4, MPI_DOUBLE, all.data(), 4, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    const std::vector<unsigned char> none;
+    const std::vector<unsigned char>& mask = exchange_ ? exchange_->ghost_mask() : none;
+    const double ghosts = double(std::count(mask.begin(), mask.end(), (unsigned char)1));
+    const double mine[5] = {double(mask.size()) - ghosts, ghosts, exchange_ ? exchange_->bytes_sent() : 0.0,
+                            exchange_ ? double(exchange_->exchanges()) : 0.0,
+                            exchange_ ? exchange_->migrated_bytes() : 0.0};
+    std::vector<double> all(size_t(5 * n));
+    MPI_Gather(mine, 5, MPI_DOUBLE, all.data(), 5, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     if (!root()) return;
+    const distributed::Decomposition& d = exchange_ ? exchange_->decomposition() : part_.decomposition;
     std::printf("mfsd: rank   owned   ghosts   sent/step [kB]   exchanges/step (%d ranks, imbalance %.3f)\n", n,
-                part_.decomposition.imbalance());
+                d.imbalance());
+    double migrated = 0;
     for (int r = 0; r < n; ++r) {
-      const double* a = all.data() + 4 * r;
+      const double* a = all.data() + 5 * r;
+      migrated += a[4];
       std::printf("mfsd: %4d %8.0f %8.0f %14.2f %12.2f\n", r, a[0], a[1], steps > 0 ? a[2] / double(steps) / 1e3 : 0.0,
                   steps > 0 ? a[3] / double(steps) : 0.0);
     }
+    if (exchange_ && exchange_->migrations() > 0)
+      std::printf("mfsd: migrations: %ld (rebalances %ld), %.1f kB moved between ranks in all\n",
+                  exchange_->migrations(), exchange_->rebalances(), migrated / 1e3);
   }
 
  private:
   distributed::LocalPart part_;
+  InitialParticles scene_lists_;
   std::shared_ptr<MpiGhostExchange> exchange_;
 };
 

@@ -5,8 +5,11 @@
 // solver was made with; the solver maps ids to its own (reordered) indices.
 // No MPI here: the MPI transport implements this in mpi_ghost_exchange.cpp.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <vector>
+
+#include "host/scene/particle_generator.hpp"
 
 namespace mfsd {
 
@@ -40,6 +43,30 @@ class GhostExchange {
   virtual int rank() const = 0;
   // A particle's index in the whole scene.
   virtual long global_id(long local_id) const = 0;
+
+  // Migration, for methods whose particles move through the cut (ULSPH;
+  // docs/distributed.md, "Migration"). Collective. In: this rank's owned
+  // particles (local ids), their current positions and one record each of
+  // `record_bytes` (the caller's layout). Every rank decomposes the gathered
+  // positions (host/distributed/migration.hpp) and each record travels to its
+  // new owner and to every rank whose halo of `radius` now holds it. Out: the
+  // particles this rank now holds, grouped by the rank they came from, each
+  // group in ascending global index.
+  struct Arrivals {
+    std::vector<long> global_id;
+    std::vector<unsigned char> ghost;
+    std::vector<char> records;
+  };
+  virtual Arrivals migrate(const std::vector<long>& owned, const std::vector<std::array<double, 3>>& position,
+                           const std::vector<char>& records, size_t record_bytes, double radius) = 0;
+  // The held particles' new order (their global indices; each one's position
+  // is its new local id) after a migration: the exchange plan, the ghost mask
+  // and the lists follow it.
+  virtual void adopt(const std::vector<long>& global_id) = 0;
+  // The scene's lists (conditions, clamps, probes, measure planes) over this
+  // rank's owned particles, by local id (those of the set-up, or of the last
+  // adopt()).
+  virtual const InitialParticles& lists() const = 0;
 };
 
 }  // namespace mfsd

@@ -23,6 +23,36 @@ std::vector<long> owned_members(const std::vector<long>& ids, const std::unorder
 
 }  // namespace
 
+void map_lists(const InitialParticles& all, const std::unordered_map<long, long>& local_of,
+               const std::vector<unsigned char>& ghost, InitialParticles& p, std::vector<long>& probe_members,
+               std::vector<long>& measure_members) {
+  p.probe_particles.clear();
+  p.clamp_particles.clear();
+  p.measure_particles.clear();
+  p.condition_particles.clear();
+  probe_members.clear();
+  measure_members.clear();
+  for (const auto& ids : all.probe_particles) {
+    p.probe_particles.push_back(owned_members(ids, local_of, ghost));
+    probe_members.push_back(long(p.probe_particles.back().size()));
+  }
+  for (const auto& ids : all.clamp_particles) p.clamp_particles.push_back(owned_members(ids, local_of, ghost));
+  for (const auto& ids : all.measure_particles) {
+    p.measure_particles.push_back(owned_members(ids, local_of, ghost));
+    measure_members.push_back(long(p.measure_particles.back().size()));
+  }
+  for (const auto& sel : all.condition_particles) {
+    InitialParticles::Selected s;
+    for (size_t k = 0; k < sel.ids.size(); ++k) {
+      const auto it = local_of.find(sel.ids[k]);
+      if (it == local_of.end() || ghost[size_t(it->second)]) continue;
+      s.ids.push_back(it->second);
+      if (!sel.area.empty()) s.area.push_back(sel.area[k]);
+    }
+    p.condition_particles.push_back(std::move(s));
+  }
+}
+
 LocalPart local_part(const InitialParticles& all, int rank, int ranks, double halo_radius) {
   LocalPart part;
   std::vector<int> owner;
@@ -72,26 +102,7 @@ LocalPart local_part(const InitialParticles& all, int rank, int ranks, double ha
   }
   if (all.surface.empty()) p.surface.clear();
 
-  // Lists of ids: owned members only, as local ids.
-  for (const auto& ids : all.probe_particles) {
-    p.probe_particles.push_back(owned_members(ids, local_of, part.ghost));
-    part.probe_members.push_back(long(p.probe_particles.back().size()));
-  }
-  for (const auto& ids : all.clamp_particles) p.clamp_particles.push_back(owned_members(ids, local_of, part.ghost));
-  for (const auto& ids : all.measure_particles) {
-    p.measure_particles.push_back(owned_members(ids, local_of, part.ghost));
-    part.measure_members.push_back(long(p.measure_particles.back().size()));
-  }
-  for (const auto& sel : all.condition_particles) {
-    InitialParticles::Selected s;
-    for (size_t k = 0; k < sel.ids.size(); ++k) {
-      const auto it = local_of.find(sel.ids[k]);
-      if (it == local_of.end() || part.ghost[size_t(it->second)]) continue;
-      s.ids.push_back(it->second);
-      if (!sel.area.empty()) s.area.push_back(sel.area[k]);
-    }
-    p.condition_particles.push_back(std::move(s));
-  }
+  map_lists(all, local_of, part.ghost, p, part.probe_members, part.measure_members);
   p.constrained_count.assign(all.body_range.size(), 0);
   for (size_t i = 0; i < part.global_id.size(); ++i)
     if (!part.ghost[i] && p.constrained[i]) ++p.constrained_count[size_t(p.body[i])];

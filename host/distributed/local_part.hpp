@@ -9,6 +9,7 @@
 // that no message about the plan is needed. Host-side, no MPI: every rank
 // computes every rank's plan from the same particles.
 #pragma once
+#include <unordered_map>
 #include <vector>
 
 #include "host/distributed/rcb.hpp"
@@ -34,5 +35,12 @@ struct LocalPart {
 // The part of `all` that rank `rank` of `ranks` holds, with ghosts within
 // `halo_radius` of its box.
 LocalPart local_part(const InitialParticles& all, int rank, int ranks, double halo_radius);
+
+// The lists of `all` (probes, clamps, measure planes, conditions) over the
+// owned particles of a part (`local_of`: global index -> local id), by local
+// id, into `p`; the probes' and planes' member counts here.
+void map_lists(const InitialParticles& all, const std::unordered_map<long, long>& local_of,
+               const std::vector<unsigned char>& ghost, InitialParticles& p, std::vector<long>& probe_members,
+               std::vector<long>& measure_members);
 
 }  // namespace mfsd::distributed

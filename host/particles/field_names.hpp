@@ -5,6 +5,9 @@ namespace mfsd::field {
 inline constexpr const char* id = "id";
 inline constexpr const char* body = "body";
 inline constexpr const char* ghost = "ghost";  // distributed runs: 1 for a copy of another rank's particle
+// Distributed runs with migration: the particle's cell key at the set-up's
+// sort, which with its global index gives its place in the single-process order.
+inline constexpr const char* order_key = "order_key";
 inline constexpr const char* reference_position = "reference_position";
 inline constexpr const char* reference_position_double = "reference_position_double";  // set-up only
 inline constexpr const char* displacement = "displacement";
@@ -69,7 +72,7 @@ inline constexpr const char* singular = "singular";                    // singul
 inline constexpr const char* node_operator = "node_operator";          // faces and RK coefficients
 inline constexpr const char* implicit_gradient = "implicit_gradient";  // NSNI data
 inline constexpr const char* operator_status = "operator_status";      // regularized / failed points
-inline constexpr const char* nearest = "nearest";  // distance to the nearest node (time step)
+inline constexpr const char* nearest = "nearest";                      // distance to the nearest node (time step)
 inline constexpr const char* reach = "reach";                          // a + cell reach
 inline constexpr const char* effective_stress = "effective_stress";    // sigma_bar, 3 x 3
 inline constexpr const char* stress_gradient = "stress_gradient";      // NSNI sigma^(i)

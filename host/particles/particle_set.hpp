@@ -96,6 +96,14 @@ class ParticleSet {
   }
   size_t element_bytes(const std::string& name) const { return find(name).element_bytes(); }
 
+  // A new particle count for every field (the particles a distributed run's
+  // rank holds after a migration, whose values are then unpacked in);
+  // the elements kept keep their values.
+  void resize(Index n) {
+    n_ = n;
+    for (auto& kv : fields_) kv.second->resize(size_t(n));
+  }
+
   // Reorders every field: new[k] = old[perm[k]]. Ids travel with the data, so
   // outputs still name particles by their original index.
   void permute(const DeviceVector<B, Index>& perm) {
@@ -107,6 +115,7 @@ class ParticleSet {
   struct FieldBase {
     virtual ~FieldBase() = default;
     virtual void permute(const DeviceVector<B, Index>& perm) = 0;
+    virtual void resize(size_t n) = 0;
     virtual size_t bytes() const = 0;
     virtual const std::type_info& type() const = 0;
     virtual std::string save() const = 0;
@@ -124,6 +133,7 @@ class ParticleSet {
       gather<B, T>(perm, data, tmp);
       data.swap(tmp);
     }
+    void resize(size_t n) override { data.resize(n); }
     size_t bytes() const override { return data.size() * sizeof(T); }
     size_t element_bytes() const override { return sizeof(T); }
     const std::type_info& type() const override { return typeid(T); }

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,13 @@ class Solver {
   // particles and the transport that refreshes them. A method that cannot
   // run distributed yet says so.
   virtual void attach_ghosts(std::shared_ptr<GhostExchange> ghosts) = 0;
+  // Distributed runs whose particles migrated before a checkpoint: this
+  // rank holds the checkpoint's `n` particles (the exchange has taken the
+  // checkpoint's membership), which the next restore_state() fills.
+  virtual void expect_particles(long n) {
+    (void)n;
+    throw std::logic_error("this solver's particles do not migrate");
+  }
 };
 
 struct SolverOptions {

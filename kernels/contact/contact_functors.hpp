@@ -146,6 +146,10 @@ struct ContactForceFunctor {
   ContactPairLaw<Real> law;
   Real stiffness_factor;  // kappa (contcoeff)
   Vec<D, Real>* force;
+  // Distributed runs: 1 per ghost candidate (null: none). A rigid body's
+  // markers leave the ghosts out, so that the ranks' sums of the force on
+  // it count each particle once (on its owner).
+  const unsigned char* ghost = nullptr;
 
   MFSD_HD Real operator()(Index i) const {
     const Vec<D, Real> xi = x[i], vi = v[i];
@@ -170,6 +174,7 @@ struct ContactForceFunctor {
         const int gj = group[j];
         const ContactGroup<Real> Gj = groups[gj];
         if (Gi.rigid && Gj.rigid) continue;
+        if (Gi.rigid && ghost && ghost[j]) continue;
         if (gi == gj && (!Gi.self_contact || squared_norm(X[i] - X[j]) < Gi.support2)) continue;
         if (gi != gj && Gi.part == Gj.part) continue;
         const Vec<D, Real> r = xi - x[j];
@@ -242,12 +247,15 @@ struct ContactApplyFunctor {
   Real dt;
   Vec<D, Real>* velocity;
   Vec<D, Real>* acceleration;
+  const unsigned char* ghost = nullptr;  // distributed runs: ghosts change, but count nothing
 
   MFSD_HD ContactSums<Real> operator()(Index c) const {
     ContactSums<Real> s = ContactSums<Real>::zero();
     const Vec<D, Real> f = force[c];
     const Index p = particle[c];
-    s.power = add_step_force(f, mass[c], dt, velocity[p], acceleration[p]);
+    const Real power = add_step_force(f, mass[c], dt, velocity[p], acceleration[p]);
+    if (ghost && ghost[c]) return s;
+    s.power = power;
     for (int a = 0; a < D; ++a) s.force[a] = f.v[a];
     return s;
   }

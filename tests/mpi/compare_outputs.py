@@ -7,7 +7,10 @@ planes) agrees row by row within round-off, relative to each column's largest
 magnitude (at least 1e-6 of the file's largest), and that the last snapshot's PVTU pieces hold every particle once
 with the same displacements. Exit 0 when they agree; prints the worst column.
 
-  compare_outputs.py MFSD MPIEXEC RANKS SCENE TOLERANCE [--set k=v ...]
+  compare_outputs.py MFSD MPIEXEC RANKS SCENE TOLERANCE [--migrates] [--set k=v ...]
+
+--migrates: the distributed run must also have migrated particles between
+the ranks (its report's "migrations: N", N > 0).
 """
 import csv
 import os
@@ -62,12 +65,18 @@ def particles_of(folder):
 def main():
     mfsd, mpiexec, ranks, scene, tol = sys.argv[1:6]
     extra = sys.argv[6:]
+    migrates = "--migrates" in extra
+    extra = [a for a in extra if a != "--migrates"]
     tol = float(tol)
     work = tempfile.mkdtemp(prefix="mfsd_mpi_")
     serial, dist = os.path.join(work, "serial"), os.path.join(work, "ranks")
     subprocess.run([mfsd, "run", scene, "-q", "--threads", "1", "-o", serial] + extra, check=True)
-    subprocess.run([mpiexec, "-n", ranks, "--oversubscribe", mfsd, "run", scene, "-q", "--threads", "1", "-o", dist]
-                   + extra, check=True)
+    r = subprocess.run([mpiexec, "-n", ranks, "--oversubscribe", mfsd, "run", scene, "--threads", "1", "-o", dist]
+                       + extra, check=True, capture_output=True, text=True)
+    m = re.search(r"migrations: (\d+) \(rebalances (\d+)\)", r.stdout)
+    if migrates:
+        assert m and int(m.group(1)) > 0, "the distributed run migrated no particle:\n" + r.stdout[-2000:]
+        print("%s migrations, %s rebalances" % (m.group(1), m.group(2)))
     worst, where = 0.0, ""
     series = sorted(f for f in os.listdir(serial) if f.endswith(".csv"))
     assert series, "the scene writes no CSV series"

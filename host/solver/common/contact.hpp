@@ -43,6 +43,10 @@ struct ContactPartSetup {
   std::vector<BodyProperties> props;
   std::vector<Real> volume;
   std::vector<unsigned char> near_surface;
+  // Distributed runs: 1 per ghost particle (empty: none). Ghosts take part
+  // as partners of the owned particles; the sums (work, rigid-body forces)
+  // leave them out: their owners count them.
+  std::vector<unsigned char> ghost;
 };
 
 template <class B, int D, class Real>
@@ -70,12 +74,20 @@ class Contact {
     if (!enabled_) return;
     law_ = ContactPairLaw<Real>{Real(contact_damping_ratio(spec.restitution)), Real(spec.friction)};
     stiffness_factor_ = spec.stiffness;
+    // From scratch: a distributed run sets the contact up again after its
+    // particles migrated (ParticleSolver::setup_contact_again).
+    body_spans_.clear();
+    rigid_spans_.clear();
+    rigid_names_.clear();
+    motion_.clear();
+    max_spacing_ = 0;
     std::map<std::string, size_t> rigid_index;
     for (size_t r = 0; r < scene.rigid_bodies.size(); ++r) rigid_index[scene.rigid_bodies[r].name] = r;
 
     std::vector<Index> particle;
     std::vector<Real> mass, density;
     std::vector<int> group;
+    std::vector<unsigned char> ghost;
     std::vector<ContactGroup<Real>> groups;
     part_begin_.assign(1, 0);
     for (size_t q = 0; q < parts.size(); ++q) {
@@ -96,6 +108,7 @@ class Contact {
         for (Index p = P.ranges[lb].begin; p < P.ranges[lb].end; ++p) {
           if (!P.near_surface[size_t(p)]) continue;
           particle.push_back(p);
+          ghost.push_back(P.ghost.empty() ? 0 : P.ghost[size_t(p)]);
           mass.push_back(Real(rho * double(P.volume[size_t(p)])));
           density.push_back(Real(rho));
           group.push_back(g);
@@ -120,6 +133,7 @@ class Contact {
         for (int a = 0; a < D; ++a) x.v[a] = Real(X[a]);
         markers.push_back(x);
         mass.push_back(Real(0));
+        ghost.push_back(0);
         group.push_back(int(groups.size() - 1));
       }
       s.end = Index(particles_ + markers.size());
@@ -134,6 +148,8 @@ class Contact {
     from_host<B>(mass, mass_);
     from_host<B>(density, density_);
     from_host<B>(group, group_);
+    has_ghosts_ = std::count(ghost.begin(), ghost.end(), (unsigned char)1) > 0;
+    from_host<B>(ghost, ghost_);
     from_host<B>(groups, groups_);
     placement_.resize(rigid_spans_.size());
     x_.resize(size_t(count_));
@@ -182,19 +198,22 @@ class Contact {
     thrust::fill(BackendTraits<B>::policy(), start_.begin(), start_.begin() + cells_, Index(0));
     thrust::fill(BackendTraits<B>::policy(), end_.begin(), end_.begin() + cells_, Index(0));
     parallel_for<B>(count_, CellRangeFunctor{raw(keys_), count_, raw(start_), raw(end_)});
-    const ContactForceFunctor<D, Real> f{grid,        raw(start_),  raw(end_), raw(order_),
-                                         raw(x_),     raw(v_),      raw(X_),   raw(mass_),
-                                         raw(group_), raw(groups_), law_,      Real(stiffness_factor_),
-                                         raw(force_)};
+    const ContactForceFunctor<D, Real> f{grid,        raw(start_),
+                                         raw(end_),   raw(order_),
+                                         raw(x_),     raw(v_),
+                                         raw(X_),     raw(mass_),
+                                         raw(group_), raw(groups_),
+                                         law_,        Real(stiffness_factor_),
+                                         raw(force_), has_ghosts_ ? raw(ghost_) : nullptr};
     pending_.clear();
     pending_.dt = dt;
     pending_.inverse_step = results.reduce(Index(0), count_, f, Real(0), thrust::maximum<Real>{});
     for (const Span& s : body_spans_)
-      pending_.body.push_back(
-          results.reduce(s.begin, s.end,
-                         ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_), Real(dt),
-                                                      views[s.part].velocity, views[s.part].acceleration},
-                         ContactSums<Real>::zero(), ContactSumsCombine{}));
+      pending_.body.push_back(results.reduce(
+          s.begin, s.end,
+          ContactApplyFunctor<D, Real>{raw(particle_), raw(force_), raw(mass_), Real(dt), views[s.part].velocity,
+                                       views[s.part].acceleration, has_ghosts_ ? raw(ghost_) : nullptr},
+          ContactSums<Real>::zero(), ContactSumsCombine{}));
     for (const Span& s : rigid_spans_)
       pending_.rigid.push_back(results.reduce(s.begin, s.end, ContactForceSumFunctor<D, Real>{raw(force_)},
                                               ContactSums<Real>::zero(), ContactSumsCombine{}));
@@ -319,6 +338,8 @@ class Contact {
   DeviceVector<B, Real> mass_;
   DeviceVector<B, Real> density_;  // rho of each candidate (refresh_masses)
   DeviceVector<B, int> group_;
+  DeviceVector<B, unsigned char> ghost_;  // per candidate (distributed runs)
+  bool has_ghosts_ = false;
   DeviceVector<B, ContactGroup<Real>> groups_;
   DeviceVector<B, RigidPlacement<D, Real>> placement_;
   HostStaging<B> staging_;

@@ -10,11 +10,16 @@
 // Include after the backend header.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -274,6 +279,130 @@ class ParticleSolver : public Solver {
     for (size_t f = 0; f < fields.size(); ++f) particles_.unpack(fields[f], ghost_receive_index_, unpacked[f]);
   }
 
+  // Distributed runs of methods whose particles move through the cut (ULSPH;
+  // docs/distributed.md, "Migration"): every field of each owned particle
+  // goes to its new owner and to the ranks whose halo (`radius`) now holds
+  // it; the held particles are put in the single-process run's relative
+  // order (body, set-up cell key in field::order_key, global index), so
+  // that every row still sums its neighbours in that run's order. Then the
+  // exchange plan, the lists of the conditions, probes and planes follow,
+  // and after_migration() re-binds what the method keeps by index.
+  void migrate_particles(double radius) {
+    const Index n = particles_.size();
+    const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
+    std::vector<Index> owned_index;
+    std::vector<long> owned;
+    std::vector<std::array<double, 3>> position;
+    for (Index i = 0; i < n; ++i)
+      if (!ghost[size_t(i)]) {
+        owned_index.push_back(i);
+        owned.push_back(long(ids[size_t(i)]));
+        std::array<double, 3> x{0, 0, 0};
+        for (int a = 0; a < D; ++a) x[size_t(a)] = double(X[size_t(i)].v[a] + u[size_t(i)].v[a]);
+        position.push_back(x);
+      }
+    // One record per owned particle: its fields one after the other (the
+    // same names, in the same order, on every rank).
+    std::vector<std::string> names;
+    for (const std::string& name : particles_.field_names())
+      if (name != field::id && name != field::ghost) names.push_back(name);
+    std::vector<size_t> offset, size;
+    size_t record = 0;
+    for (const std::string& name : names) {
+      offset.push_back(record);
+      size.push_back(particles_.element_bytes(name));
+      record += size.back();
+    }
+    DeviceVector<B, Index> pick;
+    from_host<B>(owned_index, pick);
+    std::vector<char> records(owned.size() * record);
+    for (size_t f = 0; f < names.size(); ++f) {
+      const std::vector<char> packed = particles_.pack(names[f], pick);
+      for (size_t k = 0; k < owned.size(); ++k)
+        std::memcpy(records.data() + k * record + offset[f], packed.data() + k * size[f], size[f]);
+    }
+    GhostExchange::Arrivals in = ghosts_->migrate(owned, position, records, record, radius);
+
+    // The arrivals into the fields, then into the single-process order.
+    const Index m = Index(in.global_id.size());
+    particles_.resize(m);
+    DeviceVector<B, Index> all;
+    all.resize(size_t(m));
+    sequence<B, Index>(all);
+    for (size_t f = 0; f < names.size(); ++f) {
+      std::vector<char> bytes(size_t(m) * size[f]);
+      for (size_t k = 0; k < size_t(m); ++k)
+        std::memcpy(bytes.data() + k * size[f], in.records.data() + k * record + offset[f], size[f]);
+      particles_.unpack(names[f], all, bytes);
+    }
+    const auto body = to_host<B>(particles_.template buffer<int>(field::body));
+    const auto key = to_host<B>(particles_.template buffer<std::int64_t>(field::order_key));
+    std::vector<Index> order(static_cast<size_t>(m));
+    std::iota(order.begin(), order.end(), Index(0));
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+      return std::make_tuple(body[size_t(a)], key[size_t(a)], in.global_id[size_t(a)]) <
+             std::make_tuple(body[size_t(b)], key[size_t(b)], in.global_id[size_t(b)]);
+    });
+    DeviceVector<B, Index> perm;
+    from_host<B>(order, perm);
+    particles_.permute(perm);
+    std::vector<long> global(static_cast<size_t>(m));
+    for (size_t k = 0; k < size_t(m); ++k) global[k] = in.global_id[size_t(order[k])];
+    ghosts_->adopt(global);
+
+    follow_membership();
+  }
+
+  // After this rank's particles changed (a migration, or a checkpoint of
+  // migrated particles restored): local ids are the positions, the ghost
+  // flags the exchange's; the body ranges, the lists of the conditions,
+  // probes and planes, the exchange's indices and the method's own follow.
+  void follow_membership() {
+    sequence<B, Index>(particles_.template buffer<Index>(field::id));
+    from_host<B>(ghosts_->ghost_mask(), particles_.template buffer<unsigned char>(field::ghost));
+    const auto body = to_host<B>(particles_.template buffer<int>(field::body));
+    for (size_t b = 0; b < ranges_.size(); ++b) {
+      const auto lo = std::lower_bound(body.begin(), body.end(), int(b));
+      const auto hi = std::upper_bound(body.begin(), body.end(), int(b));
+      ranges_[b] = BodyRange{Index(lo - body.begin()), Index(hi - body.begin())};
+    }
+    const InitialParticles& lists = ghosts_->lists();
+    init_.probe_particles = lists.probe_particles;
+    init_.clamp_particles = lists.clamp_particles;
+    init_.measure_particles = lists.measure_particles;
+    init_.condition_particles = lists.condition_particles;
+    bind_ghosts();
+    const std::vector<Index> where = locate();
+    conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
+    locate_probes(where);
+    after_migration();
+  }
+
+ public:
+  void expect_particles(long n) override {
+    if (!ghosts_ || !ghosts_supported()) Solver::expect_particles(n);
+    particles_.resize(Index(n));
+    sequence<B, Index>(particles_.template buffer<Index>(field::id));
+    membership_restored_ = true;
+  }
+
+ protected:
+  // What a method keeps by particle index besides the shared lists (search
+  // ranges, contact candidates), after migrate_particles().
+  virtual void after_migration() {}
+
+  // Contact set up again over the current particles (after a migration),
+  // its accumulated work and forces kept.
+  void setup_contact_again(std::vector<unsigned char> near_surface) {
+    StateArchive kept;
+    contact_.save(kept);
+    setup_contact(std::move(near_surface));
+    contact_.restore(kept);
+  }
+
   // Distributed runs: the time step's statistics over the whole scene.
   void maxima_over_ranks(StepStatistics<Real>& s) {
     if (!ghosts_) return;
@@ -376,10 +505,11 @@ class ParticleSolver : public Solver {
     std::vector<Index> measure_index;
     std::vector<Real> measure_density;
     measure_offsets_.assign(1, 0);
+    const auto body = to_host<B>(particles_.template buffer<int>(field::body));
     for (const auto& members : init_.measure_particles) {
       for (long id : members) {
         measure_index.push_back(where[size_t(id)]);
-        measure_density.push_back(Real(scene_.bodies[size_t(init_.body[size_t(id)])].material.density));
+        measure_density.push_back(Real(scene_.bodies[size_t(body[size_t(where[size_t(id)])])].material.density));
       }
       measure_offsets_.push_back(measure_index.size());
     }
@@ -415,15 +545,15 @@ class ParticleSolver : public Solver {
   void setup_contact(std::vector<unsigned char> near_surface) {
     const ContactSpec& spec = scene_.contact;
     if (!spec.enabled) return;
-    // Distributed runs: contact acts on owned particles (walls and rigid
-    // bodies; the scene check refuses contact between bodies there).
-    if (ghosts_) {
-      const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
-      for (size_t i = 0; i < near_surface.size(); ++i)
-        if (ghost[i]) near_surface[i] = 0;
-    }
+    // Distributed runs: the ghosts are candidates too, as the partners of
+    // the owned particles near the cut; the contact's sums leave them out.
     contact_part_ = ContactPartSetup<Real>{
-        {}, ranges_, {}, to_host<B>(particles_.template buffer<Real>(kinematic_volume_)), std::move(near_surface)};
+        {},
+        ranges_,
+        {},
+        to_host<B>(particles_.template buffer<Real>(kinematic_volume_)),
+        std::move(near_surface),
+        ghosts_ ? to_host<B>(particles_.template buffer<unsigned char>(field::ghost)) : std::vector<unsigned char>{}};
     size_t in_contact = 0;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       contact_part_.scene_body.push_back(b);
@@ -462,6 +592,10 @@ class ParticleSolver : public Solver {
     steps_ = a.get_value<long>("solver/steps");
     conditions_.restore(a);
     contact_.restore(a);
+    if (membership_restored_) {  // the particles of a checkpoint written after a migration
+      membership_restored_ = false;
+      follow_membership();
+    }
   }
 
   bool inside_bounds(const Vec<D, Real>& x) const {
@@ -547,6 +681,7 @@ class ParticleSolver : public Solver {
   double step_dt_ = 0;
   long round_trips_before_ = 0;
   std::shared_ptr<GhostExchange> ghosts_;  // distributed runs only
+  bool membership_restored_ = false;       // expect_particles() before restore_state()
   DeviceVector<B, Index> ghost_send_index_, ghost_receive_index_;
 };
 

@@ -31,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "host/distributed/decomposition_summary.hpp"
+#include "host/distributed/halo_check.hpp"
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/solver/common/particle_solver.hpp"
 #include "kernels/core/owned_only.hpp"
@@ -109,6 +111,12 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     globalize_boxes();
     rebuild(scene_.solver.reorder);
     particles_.remove(field::reference_position_double);
+    if (this->ghosts_) {  // each particle's place in the single-process order (migrate_particles)
+      particles_.template add<std::int64_t>(field::order_key);
+      if (scene_.solver.reorder)
+        thrust::copy(BackendTraits<B>::policy(), cells_.keys.begin(), cells_.keys.end(),
+                     particles_.template buffer<std::int64_t>(field::order_key).begin());
+    }
     // Distributed runs: the exchange in the sorted order, and the ghosts'
     // B and pair densities (their rows are cut) from their owners.
     this->bind_ghosts();
@@ -155,7 +163,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
 
   void begin_step() override {
     this->round_trips_before_ = round_trips();
-    const Index n = particles_.size();
+    Index n = particles_.size();
     const double dt = this->step_dt_ = dt_next_;
     const Real half_dt = Real(0.5 * dt);
     results_.clear();
@@ -171,7 +179,13 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       else
         parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
     });
+    if (rebuild_due_ && this->ghosts_ && migration_travelled_ > migration_reach() &&
+        !distributed::migration_switched_off()) {
+      run("migrate", [&] { this->migrate_particles(distributed::halo_radius(scene_)); });
+      migration_travelled_ = 0;
+    }
     if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
+    n = particles_.size();  // a migration changes this rank's particles
     halo();
     const PairList<D, Real> pairs = pair_list();
     if (refresh)  // pair data, B and the density half step in one pass over the rows
@@ -233,6 +247,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       // step (a plate at rest when a projectile strikes it has dt_adv = inf
       // with U_ref = 0): no particle moves more than C_adv h between searches.
       advection_travelled_ += dt * std::sqrt(double(stats.max_speed2));
+      migration_travelled_ += dt * std::sqrt(double(stats.max_speed2));
       const bool single = !scene_.solver.ulsph.dual_time_stepping;
       rebuild_due_ = single || advection_elapsed_ >= advection_step_ * (1.0 - 1e-12) ||
                      advection_travelled_ > advection_reach() * (1.0 + 1e-9);
@@ -274,6 +289,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     a.put_value("ulsph/advection_step", advection_step_);
     a.put_value("ulsph/advection_elapsed", advection_elapsed_);
     a.put_value("ulsph/advection_travelled", advection_travelled_);
+    a.put_value("ulsph/migration_travelled", migration_travelled_);
     a.put_value("ulsph/rebuild_due", rebuild_due_ ? 1L : 0L);
     a.put("ulsph/offsets", to_host<B>(offsets_));
     a.put("ulsph/neighbor", to_host<B>(neighbor_));
@@ -291,6 +307,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     // (Checkpoints written before this bound was kept: none travelled.)
     advection_travelled_ = a.has("ulsph/advection_travelled") ? a.get_value<double>("ulsph/advection_travelled") : 0;
     rebuild_due_ = a.get_value<long>("ulsph/rebuild_due") != 0;
+    if (a.has("ulsph/migration_travelled")) migration_travelled_ = a.get_value<double>("ulsph/migration_travelled");
     boxes_ = host_boxes();
     globalize_boxes();
     const auto offsets = a.get<PairIndex>("ulsph/offsets", long(particles_.size()) + 1);
@@ -362,7 +379,6 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       grids.push_back(make_cell_grid<D, Real>(lo, hi, cell, first));
       first += grids.back().cells;
     }
-    if (this->ghosts_ && !reorder) check_fixed_halo();
     sort_into_cells<B, D, Real>(particles_, field::current_position, grids, reorder, cells_);
     CellNeighborhood<D, Real> hood = cell_neighborhood<B, D, Real>(particles_, field::current_position, cells_);
     pairs_ = count_pairs<B, D, Real>(hood, search_, n, count_, offsets_);
@@ -385,6 +401,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (reorder)  // at set-up: how many particles have too few neighbours for B
       fallback_count_ =
           long(thrust::count(BackendTraits<B>::policy(), fallback_.begin(), fallback_.end(), (unsigned char)1));
+    if (this->ghosts_ && distributed::halo_check_requested()) verify_halo();
   }
 
   bool ghosts_supported() const override { return true; }
@@ -416,71 +433,59 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       for (int a = 0; a < D; ++a) box.lo.v[a] = Real(-v[k++]), box.hi.v[a] = Real(v[k++]);
   }
 
-  // Distributed ULSPH keeps the ghosts of set-up (a halo one h wider than
-  // the support) and migrates nothing. Every search checks that none of
-  // this rank's particles has come within the support of another rank's
-  // particles without being its ghost there: the ranks share the cells (a
-  // quarter of the support wide) that their owned particles occupy, and a
-  // particle within the support of another rank's cell must be in what it
-  // sends that rank (a cell's extent makes this conservative by 0.35 of the
-  // support in 2-D, which the halo's extra h covers at set-up). A run
-  // whose bodies deform more stops here with a message rather than miss pairs.
-  void check_fixed_halo() {
-    const Index n = particles_.size();
-    double support = 0;
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) support = std::max(support, 2.0 * props(b).h);
-    const double cell = 0.25 * support;
-    const int reach = 5;  // cells within the support of a point: 4, and the point's own cell
-    const auto x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
-    const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
-    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
-    auto cell_of = [&](Index i) {
-      std::array<double, 3> c{0, 0, 0};
-      for (int a = 0; a < D; ++a) c[size_t(a)] = std::floor(double(x[size_t(i)].v[a]) / cell);
-      return c;
-    };
-    std::set<std::array<double, 3>> mine;
-    for (Index i = 0; i < n; ++i)
-      if (!ghost[size_t(i)]) mine.insert(cell_of(i));
-    std::vector<double> flat;
-    for (const auto& c : mine) flat.insert(flat.end(), c.begin(), c.end());
-    const std::vector<std::vector<double>> cells = this->ghosts_->gather_all(flat);
-    const int ranks = int(cells.size()), me = this->ghosts_->rank();
-    const auto send = to_host<B>(this->ghost_send_index_);
-    const auto& counts = this->ghosts_->send_counts();
-    std::vector<unsigned char> sent(static_cast<size_t>(n));
-    size_t k = 0;
-    for (int r = 0; r < ranks; ++r) {
-      std::fill(sent.begin(), sent.end(), 0);
-      for (int c = 0; c < counts[size_t(r)]; ++c) sent[size_t(send[k++])] = 1;
-      if (r == me) continue;
-      std::set<std::array<double, 3>> theirs;
-      for (size_t c = 0; c + 2 < cells[size_t(r)].size(); c += 3)
-        theirs.insert({cells[size_t(r)][c], cells[size_t(r)][c + 1], cells[size_t(r)][c + 2]});
-      for (Index i = 0; i < n; ++i) {
-        if (ghost[size_t(i)] || sent[size_t(i)]) continue;
-        const std::array<double, 3> c = cell_of(i);
-        bool near = false;
-        for (int dx = -reach; dx <= reach && !near; ++dx)
-          for (int dy = -reach; dy <= reach && !near; ++dy)
-            for (int dz = (D == 3 ? -reach : 0); dz <= (D == 3 ? reach : 0) && !near; ++dz) {
-              const std::array<double, 3> o{c[0] + dx, c[1] + dy, c[2] + dz};
-              if (!theirs.count(o)) continue;
-              double d2 = 0;  // from the particle to the cell
-              for (int a = 0; a < D; ++a) {
-                const double v = double(x[size_t(i)].v[a]), lo = o[size_t(a)] * cell;
-                const double d = std::max({lo - v, v - (lo + cell), 0.0});
-                d2 += d * d;
-              }
-              near = d2 < support * support;
-            }
-        if (near)
-          throw UsageError("a distributed ULSPH run keeps the ghosts of its set-up, and particle " +
-                           std::to_string(this->ghosts_->global_id(long(ids[size_t(i)]))) + " has come next to rank " +
-                           std::to_string(r) + "'s particles at t = " + std::to_string(time_) +
-                           " s: the deformation needs migration, which is not built (docs/distributed.md)");
-      }
+  // Distributed ULSPH (docs/distributed.md, "Migration"). A rank's ghosts
+  // are the particles within the halo radius r (3h) of its region at the
+  // last migration, whose owned particles were inside it. Between
+  // migrations no particle moves more than d, so an owned particle and a
+  // partner within the support 2h of it now were within 2h + 2d of that
+  // region then: the ghosts hold every partner while 2d <= r - 2h. The
+  // bound of each particle's travel is the sum over the steps of dt max|v|
+  // (the ranks' common maxima), with a fifth of the margin kept back for the
+  // change of v within a step. A search past it migrates first.
+  //   Contact searches its pairs at every step, not only at the searches:
+  // its reach (kContactRateReach spacings) plus twice the travel until the
+  // next search (at most the advection reach more) must stay within r too.
+  double migration_reach() {
+    double reach = std::numeric_limits<double>::infinity(), spacing = 0;
+    const double r = distributed::halo_radius(scene_);
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      reach = std::min(reach, 0.4 * (r - 2.0 * props(b).h));
+      spacing = std::max(spacing, scene_.bodies[b].spacing);
     }
+    if (scene_.contact.enabled) reach = std::min(reach, 0.4 * (r - kContactRateReach * spacing) - advection_reach());
+    return reach;
+  }
+
+  void after_migration() override {
+    for (size_t b = 0; b < search_.size(); ++b) search_[b].range = ranges_[b];
+    // Per particle, outside the fields (a restored run refreshes its kept
+    // pairs without a search first).
+    gradient_sum_.resize(size_t(particles_.size()));
+    fallback_.resize(size_t(particles_.size()));
+    if (scene_.contact.enabled) this->setup_contact_again(std::vector<unsigned char>(size_t(particles_.size()), 1));
+  }
+
+  // MFSD_VERIFY_HALO=1: after every search, the brute-force check that each
+  // owned particle's partners are all held here (host/distributed/halo_check.hpp).
+  void verify_halo() {
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    const auto x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
+    std::vector<long> global;
+    std::vector<std::array<double, 3>> position;
+    for (size_t i = 0; i < ids.size(); ++i) {
+      global.push_back(this->ghosts_->global_id(long(ids[i])));
+      std::array<double, 3> p{0, 0, 0};
+      for (int a = 0; a < D; ++a) p[size_t(a)] = double(x[i].v[a]);
+      position.push_back(p);
+    }
+    std::vector<double> support;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) support.push_back(2.0 * props(b).h);
+    const std::string missing = distributed::missing_partner(
+        *this->ghosts_, global, to_host<B>(particles_.template buffer<unsigned char>(field::ghost)),
+        to_host<B>(particles_.template buffer<int>(field::body)), position, support, D);
+    if (!missing.empty())
+      throw std::logic_error("distributed ULSPH halo incomplete at step " + std::to_string(steps_) + ": " + missing);
+    ++halo_checks_;
   }
 
   // x = X + u into current_position and V = m / rho into current_volume.
@@ -685,6 +690,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   std::vector<double> body_total_;  // particles of each body in the whole scene (distributed runs: all ranks')
   double advection_step_ = 0, advection_elapsed_ = 0;
   double advection_travelled_ = 0;  // sum dt |v|max since the last search
+  double migration_travelled_ = 0;  // distributed runs: sum dt |v|max since the last migration
+  long halo_checks_ = 0;            // MFSD_VERIFY_HALO: searches checked
   std::vector<double> gravity_at_start_;
 };
 
