@@ -186,7 +186,6 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     }
     if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
     n = particles_.size();  // a migration changes this rank's particles
-    halo();
     const PairList<D, Real> pairs = pair_list();
     if (refresh)  // pair data, B and the density half step in one pass over the rows
       run("half_step", [&] { refresh_half_step(half_dt); });
@@ -194,16 +193,18 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       run("half_step", [&] {
         parallel_for<B>(n, ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
       });
-    halo();
     run("stress", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) stress(b, pairs, Real(dt));
     });
-    halo();
+    halo({field::pressure, field::shear_stress, field::velocity_gradient, field::plastic_scale, field::failed});
     run("force", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) force(b, pairs, Real(dt));
       parallel_for<B>(n, ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
     });
-    if (contact_.enabled()) run("contact", [&] { contact_.apply(this->kinematics(), time_, dt, results_); });
+    if (contact_.enabled()) {
+      halo({field::velocity});  // the contact's partners across the cut
+      run("contact", [&] { contact_.apply(this->kinematics(), time_, dt, results_); });
+    }
   }
 
   void end_step() override {
@@ -214,7 +215,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     const Kinematics<D, Real> k = this->kinematics();
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
-    halo();
+    halo({field::velocity});
     ResultSlot<StepStatistics<Real>> stats_slot;
     std::vector<ResultSlot<BoundingBox<D, Real>>> box_slots;
     run("advance", [&] {
@@ -228,7 +229,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
         box_slots.push_back(results_.reduce(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
                                             BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{}));
     });
-    halo();
+    halo({field::density});
     run("time_step", [&] {
       results_.fetch();
       conditions_.collect(results_, k);
@@ -408,8 +409,18 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
 
   // Distributed runs: the ghosts' copies of every field after a pass whose
   // pair sums their cut rows got wrong (docs/distributed.md).
-  void halo() {
-    if (this->ghosts_) run("halo", [&] { this->refresh_all_ghosts(); });
+  // Each refresh holds what the passes until the next one read of a partner
+  // and a ghost's own row got wrong (its row is cut by the halo):
+  //   after the stress: p, tau, L, kappa (the force and GNOG read them of the
+  //     partners; the failure flag with them);
+  //   after the force, with contact: v (the contact's partners);
+  //   after the boundary conditions: v (the density step and L read it);
+  //   after the advance: rho (the search's V_j = m_j / rho_j, and p).
+  // Every other field a ghost holds is its own function of these (x = X + u,
+  // the pair data, B) or is read of no partner (a, the work sums). The
+  // single-process comparisons (tests/mpi) check that this is complete.
+  void halo(std::initializer_list<const char*> names) {
+    if (this->ghosts_) run("halo", [&] { this->refresh_ghosts(names); });
   }
 
   Index owned_in(const BodyRange& r) {
