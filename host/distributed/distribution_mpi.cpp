@@ -526,7 +526,6 @@ class MpiDistribution final : public Distribution {
     };
     if (has_fracture_body(scene)) refuse("/bodies", "phase-field fracture");
     if (scene.solver.relaxation.enabled) refuse("/solver/relaxation", "dynamic relaxation");
-    if (has_active_stress(scene)) refuse("/bodies", "an active stress");
     // Contact between bodies and self-contact need the current
     // configuration's neighbours on other ranks as ghosts: ULSPH's migrating
     // halo holds them; TLSPH's ghosts are those of the reference configuration.
