@@ -131,9 +131,35 @@ class MpiGhostExchange final : public GhostExchange {
                        all.begin() + displacements[size_t(r)] + counts[size_t(r)]);
     return out;
   }
+  std::vector<char> exchange_blocks(const std::vector<std::vector<char>>& to_rank) override {
+    const int ranks = int(send_counts_.size()), me = rank();
+    std::vector<int> out(static_cast<size_t>(ranks), 0), in(static_cast<size_t>(ranks), 0);
+    for (int q = 0; q < ranks; ++q) out[size_t(q)] = q == me ? 0 : int(to_rank[size_t(q)].size());
+    MPI_Alltoall(out.data(), 1, MPI_INT, in.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    size_t total = 0;
+    for (int c : in) total += size_t(c);
+    std::vector<char> received(total);
+    std::vector<MPI_Request> requests;
+    size_t at = 0;
+    for (int q = 0; q < ranks; ++q) {
+      if (in[size_t(q)] > 0) {
+        requests.emplace_back();
+        MPI_Irecv(received.data() + at, in[size_t(q)], MPI_BYTE, q, kBlockTag, MPI_COMM_WORLD, &requests.back());
+      }
+      at += size_t(in[size_t(q)]);
+    }
+    for (int q = 0; q < ranks; ++q)
+      if (out[size_t(q)] > 0) {
+        requests.emplace_back();
+        MPI_Isend(to_rank[size_t(q)].data(), out[size_t(q)], MPI_BYTE, q, kBlockTag, MPI_COMM_WORLD, &requests.back());
+        bytes_sent_ += double(out[size_t(q)]);
+      }
+    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    return received;
+  }
   int rank() const override { return world_rank(); }
   double bytes_sent() const { return bytes_sent_; }
-  static constexpr int kTag = 25, kMigrationTag = 26;
+  static constexpr int kTag = 25, kMigrationTag = 26, kBlockTag = 27;
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
 
@@ -526,21 +552,6 @@ class MpiDistribution final : public Distribution {
     };
     if (has_fracture_body(scene)) refuse("/bodies", "phase-field fracture");
     if (scene.solver.relaxation.enabled) refuse("/solver/relaxation", "dynamic relaxation");
-    // Contact between bodies and self-contact need the current
-    // configuration's neighbours on other ranks as ghosts: ULSPH's migrating
-    // halo holds them; TLSPH's ghosts are those of the reference configuration.
-    if (scene.contact.enabled) {
-      bool lagrangian = false;
-      for (const BodySpec& b : scene.bodies)
-        if ((scene.contact.bodies.empty() || std::find(scene.contact.bodies.begin(), scene.contact.bodies.end(),
-                                                       b.name) != scene.contact.bodies.end()) &&
-            b.method != Method::ulsph)
-          lagrangian = true;
-      const size_t in_contact = scene.contact.bodies.empty() ? scene.bodies.size() : scene.contact.bodies.size();
-      if (lagrangian && in_contact >= 2) refuse("/contact/bodies", "contact between total-Lagrangian bodies");
-      if (lagrangian && !scene.contact.self_contact.empty())
-        refuse("/contact/self_contact", "self-contact of total-Lagrangian bodies");
-    }
   }
 
   InitialParticles local_particles(const Scene& scene, const InitialParticles& all) override {

@@ -40,6 +40,10 @@ class GhostExchange {
   virtual void sum_over_ranks(std::vector<double>& values) = 0;
   // Every rank's `values` (of any length), in rank order.
   virtual std::vector<std::vector<double>> gather_all(const std::vector<double>& values) = 0;
+  // Collective: to_rank[q] (any length, empty: nothing) goes to rank q; the
+  // blocks the other ranks sent this one come back one after the other, in
+  // rank order (the contact's remote candidates, host/solver/common/contact.hpp).
+  virtual std::vector<char> exchange_blocks(const std::vector<std::vector<char>>& to_rank) = 0;
   virtual int rank() const = 0;
   // A particle's index in the whole scene.
   virtual long global_id(long local_id) const = 0;

@@ -10,12 +10,14 @@
 // forces (energies.csv) and per rigid body the force it exerts on the bodies
 // (boundary_forces.csv). Include after the backend header.
 #pragma once
+#include <thrust/copy.h>
 #include <thrust/fill.h>
 #include <thrust/functional.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -142,7 +144,8 @@ class Contact {
       max_spacing_ = std::max(max_spacing_, rs.marker_spacing);
     }
     rigid_force_.assign(rigid_spans_.size(), Point3{0, 0, 0});
-    count_ = Index(particle.size() + markers.size());
+    count_ = local_count_ = Index(particle.size() + markers.size());
+    remote_ = nullptr;
     from_host<B>(particle, particle_);
     from_host<B>(markers, marker_position_);
     from_host<B>(mass, mass_);
@@ -159,6 +162,15 @@ class Contact {
     keys_.resize(size_t(count_));
     order_.resize(size_t(count_));
   }
+
+  // Distributed runs of a method whose ghosts are not the current
+  // configuration's neighbours (TLSPH: those of the reference
+  // configuration), with contact between bodies or self-contact: at every
+  // step each rank's candidates within the contact's reach of another rank's
+  // candidates go to that rank as remote candidates, partners of its own and
+  // nothing more (no force applied to them, none counted). Set up after
+  // setup(), which forgets it.
+  void attach_remote(GhostExchange* exchange) { remote_ = exchange; }
 
   // For a method whose masses change (RKPM's row-sum mass): the candidates
   // of part q take rho V from `volume` (the part's kinematic volumes) now,
@@ -190,7 +202,8 @@ class Contact {
     };
     for (size_t q = 0; q + 1 < part_begin_.size(); ++q)
       candidates(part_begin_[q], part_begin_[q + 1], views[q], part_begin_[q + 1] - part_begin_[q]);
-    candidates(particles_, particles_, views[0], count_ - particles_);  // the markers
+    candidates(particles_, particles_, views[0], local_count_ - particles_);  // the markers
+    if (remote_) append_remote();
     const ContactHashGrid<D, Real> grid = make_grid();
     parallel_for<B>(count_, ContactKeyFunctor<D, Real>{grid, raw(x_), raw(keys_)});
     sequence<B, Index>(order_);
@@ -207,7 +220,8 @@ class Contact {
                                          raw(force_), has_ghosts_ ? raw(ghost_) : nullptr};
     pending_.clear();
     pending_.dt = dt;
-    pending_.inverse_step = results.reduce(Index(0), count_, f, Real(0), thrust::maximum<Real>{});
+    // The rows of this rank's candidates and markers; remote candidates are partners only.
+    pending_.inverse_step = results.reduce(Index(0), local_count_, f, Real(0), thrust::maximum<Real>{});
     for (const Span& s : body_spans_)
       pending_.body.push_back(results.reduce(
           s.begin, s.end,
@@ -275,6 +289,73 @@ class Contact {
     }
   };
 
+  // The remote candidates of this step (attach_remote): rows x, v, X, mass,
+  // group from the ranks whose candidates' box comes within the contact's
+  // reach of this rank's, appended after the markers, flagged as ghosts.
+  void append_remote() {
+    struct Row {
+      Vec<D, Real> x, v, X;
+      Real mass;
+      int group;
+    };
+    const std::vector<Vec<D, Real>> x = to_host<B>(x_), v = to_host<B>(v_), X = to_host<B>(X_);
+    const std::vector<Real> mass = to_host<B>(mass_);
+    const std::vector<int> group = to_host<B>(group_);
+    std::vector<double> box(6, 0.0);  // lo[3], hi[3] of this rank's candidates (empty: lo > hi)
+    for (int a = 0; a < 3; ++a) box[size_t(a)] = 1e300, box[size_t(3 + a)] = -1e300;
+    for (Index c = 0; c < particles_; ++c)
+      for (int a = 0; a < D; ++a) {
+        box[size_t(a)] = std::min(box[size_t(a)], double(x[size_t(c)].v[a]));
+        box[size_t(3 + a)] = std::max(box[size_t(3 + a)], double(x[size_t(c)].v[a]));
+      }
+    const std::vector<std::vector<double>> boxes = remote_->gather_all(box);
+    const double reach = kContactRateReach * max_spacing_;
+    std::vector<std::vector<char>> out(boxes.size());
+    for (size_t q = 0; q < boxes.size(); ++q) {
+      if (int(q) == remote_->rank()) continue;
+      for (Index c = 0; c < particles_; ++c) {
+        double d2 = 0;
+        for (int a = 0; a < D; ++a) {
+          const double xa = double(x[size_t(c)].v[a]);
+          const double d = std::max({boxes[q][size_t(a)] - xa, xa - boxes[q][size_t(3 + a)], 0.0});
+          d2 += d * d;
+        }
+        if (!(d2 < reach * reach)) continue;
+        const Row r{x[size_t(c)], v[size_t(c)], X[size_t(c)], mass[size_t(c)], group[size_t(c)]};
+        const char* p = reinterpret_cast<const char*>(&r);
+        out[q].insert(out[q].end(), p, p + sizeof(Row));
+      }
+    }
+    const std::vector<char> in = remote_->exchange_blocks(out);
+    const size_t remote = in.size() / sizeof(Row);
+    std::vector<Vec<D, Real>> rx(remote), rv(remote), rX(remote);
+    std::vector<Real> rmass(remote);
+    std::vector<int> rgroup(remote);
+    for (size_t k = 0; k < remote; ++k) {
+      Row r;
+      std::memcpy(static_cast<void*>(&r), in.data() + k * sizeof(Row), sizeof(Row));
+      rx[k] = r.x, rv[k] = r.v, rX[k] = r.X, rmass[k] = r.mass, rgroup[k] = r.group;
+    }
+    count_ = local_count_ + Index(remote);
+    auto tail = [&](auto& device, const auto& host) {
+      device.resize(size_t(local_count_));
+      std::remove_reference_t<decltype(device)> extra;
+      from_host<B>(host, extra);
+      device.resize(size_t(count_));
+      thrust::copy(extra.begin(), extra.end(), device.begin() + local_count_);
+    };
+    tail(x_, rx);
+    tail(v_, rv);
+    tail(X_, rX);
+    tail(mass_, rmass);
+    tail(group_, rgroup);
+    tail(ghost_, std::vector<unsigned char>(remote, 1));
+    has_ghosts_ = has_ghosts_ || remote > 0;
+    force_.resize(size_t(count_));
+    keys_.resize(size_t(count_));
+    order_.resize(size_t(count_));
+  }
+
   // A table of at least 2 buckets per candidate (a power of two); cell edge
   // = the reach of the largest contact distance (pairs about to touch enter
   // the time-step bound).
@@ -325,6 +406,8 @@ class Contact {
   ContactPairLaw<Real> law_{};
   double stiffness_factor_ = 1, max_spacing_ = 0, inverse_step_ = 0;
   Index particles_ = 0, count_ = 0;
+  Index local_count_ = 0;            // candidates and markers of this rank (count_ adds the remote ones)
+  GhostExchange* remote_ = nullptr;  // attach_remote()
   int first_rigid_group_ = 0;
   size_t cells_ = 0;
   std::vector<Span> body_spans_, rigid_spans_;

@@ -545,24 +545,42 @@ class ParticleSolver : public Solver {
   void setup_contact(std::vector<unsigned char> near_surface) {
     const ContactSpec& spec = scene_.contact;
     if (!spec.enabled) return;
-    // Distributed runs: the ghosts are candidates too, as the partners of
-    // the owned particles near the cut; the contact's sums leave them out.
-    contact_part_ = ContactPartSetup<Real>{
-        {},
-        ranges_,
-        {},
-        to_host<B>(particles_.template buffer<Real>(kinematic_volume_)),
-        std::move(near_surface),
-        ghosts_ ? to_host<B>(particles_.template buffer<unsigned char>(field::ghost)) : std::vector<unsigned char>{}};
     size_t in_contact = 0;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      in_contact += std::count(spec.bodies.begin(), spec.bodies.end(), scene_.bodies[b].name);
+    const bool between_particles = in_contact >= 2 || !spec.self_contact.empty();
+    // Distributed runs. Where the ghosts are the current configuration's
+    // neighbours (ULSPH) they are candidates too, as the partners of the
+    // owned particles near the cut; the contact's sums leave them out.
+    // Elsewhere (TLSPH: the reference configuration's) the candidates are the
+    // owned particles, and contact between particles takes the other ranks'
+    // candidates near this rank's as remote partners at every step.
+    std::vector<unsigned char> ghost;
+    const bool remote = ghosts_ && !ghosts_are_current_neighbours();
+    if (ghosts_) ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
+    if (remote) {
+      for (size_t i = 0; i < near_surface.size(); ++i)
+        if (ghost[i]) near_surface[i] = 0;
+      ghost.clear();
+    }
+    contact_part_ = ContactPartSetup<Real>{{},
+                                           ranges_,
+                                           {},
+                                           to_host<B>(particles_.template buffer<Real>(kinematic_volume_)),
+                                           std::move(near_surface),
+                                           std::move(ghost)};
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       contact_part_.scene_body.push_back(b);
       contact_part_.props.push_back(props(b));
-      in_contact += std::count(spec.bodies.begin(), spec.bodies.end(), scene_.bodies[b].name);
     }
-    if (in_contact >= 2 || !spec.self_contact.empty() || !spec.rigid_bodies.empty())
+    if (between_particles || !spec.rigid_bodies.empty())
       contact_.setup(scene_, init_.rigid_markers, {contact_part_}, false);
+    if (remote && between_particles) contact_.attach_remote(ghosts_.get());
   }
+
+  // Whether a distributed run's ghosts hold every particle near an owned one
+  // in the current configuration (a method whose particles migrate).
+  virtual bool ghosts_are_current_neighbours() const { return false; }
 
   // The work of conditions, walls, clamps and contact on body b.
   void add_shared_work(size_t b, BodyEnergy& e) const {

@@ -406,6 +406,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   }
 
   bool ghosts_supported() const override { return true; }
+  bool ghosts_are_current_neighbours() const override { return true; }
 
   // Distributed runs: the ghosts' copies of every field after a pass whose
   // pair sums their cut rows got wrong (docs/distributed.md).
