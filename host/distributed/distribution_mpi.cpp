@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <numeric>
 #include <unordered_map>
 
@@ -163,8 +164,84 @@ class MpiGhostExchange final : public GhostExchange {
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
 
+  // Two paths (docs/distributed.md, "Migration"). Without a rebalance every
+  // rank decides alone where its owned particles go: the owner by the cut
+  // tree, the ranks whose region lies within `radius` (the halo test of
+  // halo.hpp); only the counts per rank are reduced (the imbalance) and the
+  // records travel point to point. A rebalance gathers every position to
+  // bisect them again (O(N) per rank, rare).
   Arrivals migrate(const std::vector<long>& owned, const std::vector<std::array<double, 3>>& position,
                    const std::vector<char>& records, size_t record_bytes, double radius) override {
+    const int ranks = int(send_counts_.size()), me = rank();
+    const distributed::Decomposition& d = decomposition_;
+    std::vector<int> owner(owned.size());
+    std::vector<double> counts(static_cast<size_t>(ranks), 0.0);
+    for (size_t k = 0; k < owned.size(); ++k) {
+      owner[k] = d.owner({position[k][0], position[k][1], position[k][2]});
+      counts[size_t(owner[k])] += 1;
+    }
+    sum_over_ranks(counts);
+    distributed::Decomposition now = d;
+    for (int q = 0; q < ranks; ++q) now.counts[size_t(q)] = long(counts[size_t(q)]);
+    if (now.imbalance() > distributed::kRebalanceThreshold)
+      return migrate_gathered(owned, position, records, record_bytes, radius);
+
+    // Each record with a header (global index, new owner, position), to its
+    // new owner and to the ranks whose halo holds it, in ascending global index.
+    struct Header {
+      long global;
+      long owner;
+      double x[3];
+    };
+    std::vector<size_t> order(owned.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::sort(order.begin(), order.end(),
+              [&](size_t i, size_t j) { return global_id(owned[i]) < global_id(owned[j]); });
+    std::vector<std::vector<char>> out(static_cast<size_t>(ranks));
+    for (size_t k : order) {
+      const distributed::Point x{position[k][0], position[k][1], position[k][2]};
+      const Header h{global_id(owned[k]), long(owner[k]), {x[0], x[1], x[2]}};
+      for (int q = 0; q < ranks; ++q) {
+        if (q != owner[k] && !(d.boxes[size_t(q)].distance(x, d.dim) < radius)) continue;
+        std::vector<char>& o = out[size_t(q)];
+        const char* hp = reinterpret_cast<const char*>(&h);
+        o.insert(o.end(), hp, hp + sizeof(Header));
+        o.insert(o.end(), records.data() + k * record_bytes, records.data() + (k + 1) * record_bytes);
+      }
+    }
+    for (int q = 0; q < ranks; ++q)
+      if (q != me) migrated_bytes_ += double(out[size_t(q)].size());
+    const double sent_before = bytes_sent_;
+    std::vector<char> in = exchange_blocks(out);
+    bytes_sent_ = sent_before;  // counted as migration, not as refreshes
+    in.insert(in.end(), out[size_t(me)].begin(), out[size_t(me)].end());
+    Arrivals a;
+    const size_t item = sizeof(Header) + record_bytes, n = in.size() / item;
+    a.records.resize(n * record_bytes);
+    held_owner_.clear();
+    send_gids_.assign(static_cast<size_t>(ranks), {});
+    for (size_t k = 0; k < n; ++k) {
+      Header h;
+      std::memcpy(static_cast<void*>(&h), in.data() + k * item, sizeof(Header));
+      std::memcpy(a.records.data() + k * record_bytes, in.data() + k * item + sizeof(Header), record_bytes);
+      a.global_id.push_back(h.global);
+      a.ghost.push_back(h.owner != me ? 1 : 0);
+      held_owner_[h.global] = int(h.owner);
+      if (h.owner != me) continue;
+      const distributed::Point x{h.x[0], h.x[1], h.x[2]};
+      for (int q = 0; q < ranks; ++q)
+        if (q != me && d.boxes[size_t(q)].distance(x, d.dim) < radius) send_gids_[size_t(q)].push_back(h.global);
+    }
+    for (auto& s : send_gids_) std::sort(s.begin(), s.end());
+    decomposition_.counts = now.counts;
+    ++migrations_;
+    return a;
+  }
+
+  // A migration with a rebalance: every rank gathers every owned position
+  // and computes the new cuts, owners and halos (host/distributed/migration.hpp).
+  Arrivals migrate_gathered(const std::vector<long>& owned, const std::vector<std::array<double, 3>>& position,
+                            const std::vector<char>& records, size_t record_bytes, double radius) {
     const int ranks = int(send_counts_.size()), me = rank();
     // Every rank's owned particles: global index and position.
     std::vector<double> mine;
@@ -183,7 +260,7 @@ class MpiGhostExchange final : public GhostExchange {
         old_owner[g] = r;
         points[g] = {all[size_t(r)][k + 1], all[size_t(r)][k + 2], all[size_t(r)][k + 3]};
       }
-    distributed::Repartition next = distributed::repartition(decomposition_, points, radius);
+    distributed::Repartition next = distributed::repartition(decomposition_, points, radius, 0.0);
     const std::vector<std::vector<long>> held = distributed::holdings(next);
     // Records out: to each rank, those of its holdings owned here, ascending.
     std::unordered_map<long, size_t> slot;
@@ -229,9 +306,21 @@ class MpiGhostExchange final : public GhostExchange {
     ++migrations_;
     if (next.rebalanced) ++rebalances_;
     decomposition_ = next.decomposition;
-    owner_ = std::move(next.owner);
-    halo_ = std::move(next.halo);
+    follow(held[size_t(me)], next.owner, next.halo);
     return a;
+  }
+
+  // The owners of this rank's held particles and what it sends each rank,
+  // from the whole scene's owners and halos.
+  void follow(const std::vector<long>& held, const std::vector<int>& owner,
+              const std::vector<std::vector<std::size_t>>& halo) {
+    const int me = rank();
+    held_owner_.clear();
+    for (long g : held) held_owner_[g] = owner[size_t(g)];
+    send_gids_.assign(halo.size(), {});
+    for (size_t q = 0; q < halo.size(); ++q)
+      for (size_t g : halo[q])
+        if (owner[g] == me) send_gids_[q].push_back(long(g));
   }
 
   void adopt(const std::vector<long>& global_id) override {
@@ -239,26 +328,28 @@ class MpiGhostExchange final : public GhostExchange {
     global_ = global_id;
     std::unordered_map<long, long> local_of;
     mask_.assign(global_.size(), 0);
+    std::vector<long> ghosts;
     for (size_t i = 0; i < global_.size(); ++i) {
       local_of[global_[i]] = long(i);
-      mask_[i] = owner_[size_t(global_[i])] != me ? 1 : 0;
+      mask_[i] = held_owner_.at(global_[i]) != me ? 1 : 0;
+      if (mask_[i]) ghosts.push_back(global_[i]);
     }
-    // The plan as local_part.cpp makes it: rank q's ghosts owned here in
-    // halo[q]'s order, this rank's ghosts from q in halo[me]'s.
+    std::sort(ghosts.begin(), ghosts.end());
+    // The plan as local_part.cpp makes it: to each rank its ghosts owned
+    // here, from each rank the ghosts it owns, both in ascending global index.
     send_.clear();
     receive_.clear();
     send_counts_.assign(size_t(ranks), 0);
     receive_counts_.assign(size_t(ranks), 0);
     for (int q = 0; q < ranks; ++q) {
       if (q == me) continue;
-      for (size_t g : halo_[size_t(q)])
-        if (owner_[g] == me) {
-          send_.push_back(local_of.at(long(g)));
-          ++send_counts_[size_t(q)];
-        }
-      for (size_t g : halo_[size_t(me)])
-        if (owner_[g] == q) {
-          receive_.push_back(local_of.at(long(g)));
+      for (long g : send_gids_[size_t(q)]) {
+        send_.push_back(local_of.at(g));
+        ++send_counts_[size_t(q)];
+      }
+      for (long g : ghosts)
+        if (held_owner_.at(g) == q) {
+          receive_.push_back(local_of.at(g));
           ++receive_counts_[size_t(q)];
         }
     }
@@ -286,6 +377,7 @@ class MpiGhostExchange final : public GhostExchange {
     if (std::count(owner_.begin(), owner_.end(), -1) > 0)
       throw StateMismatch("the ranks' checkpoints do not own every particle once (of different runs?)");
     decomposition_ = d;
+    follow(std::vector<long>(global.begin(), global.end()), owner_, halo_);
     adopt(global);
   }
   const std::vector<long>& global_ids() const { return global_; }
@@ -310,8 +402,10 @@ class MpiGhostExchange final : public GhostExchange {
   std::vector<long> probe_members_, measure_members_;
   InitialParticles scene_lists_;  // by global index
   distributed::Decomposition decomposition_;
-  std::vector<int> owner_;                      // per global index, after a migration
-  std::vector<std::vector<std::size_t>> halo_;  // per rank, after a migration
+  std::vector<int> owner_;                      // per global index (a restored membership)
+  std::vector<std::vector<std::size_t>> halo_;  // per rank, a restored membership
+  std::unordered_map<long, int> held_owner_;    // after a migration: the owner of each held particle
+  std::vector<std::vector<long>> send_gids_;    // after a migration: per rank, the ghosts it gets from here
   double bytes_sent_ = 0, migrated_bytes_ = 0;
   long exchanges_ = 0, generation_ = 0, migrations_ = 0, rebalances_ = 0;
 };
