@@ -9,7 +9,8 @@ namespace mfsd::distributed {
 
 std::string missing_partner(GhostExchange& exchange, const std::vector<long>& global,
                             const std::vector<unsigned char>& ghost, const std::vector<int>& body,
-                            const std::vector<std::array<double, 3>>& x, const std::vector<double>& support, int dim) {
+                            const std::vector<std::array<double, 3>>& x, const std::vector<double>& support, int dim,
+                            bool across_bodies) {
   std::vector<double> mine;
   for (size_t i = 0; i < global.size(); ++i)
     if (!ghost[i]) mine.insert(mine.end(), {double(global[i]), double(body[i]), x[i][0], x[i][1], x[i][2]});
@@ -41,7 +42,7 @@ std::string missing_partner(GhostExchange& exchange, const std::vector<long>& gl
           if (it == cells.end()) continue;
           for (size_t p : it->second) {
             const double* q = point[p];
-            if (int(q[1]) != body[i]) continue;
+            if (!across_bodies && int(q[1]) != body[i]) continue;
             double d2 = 0;
             for (int a = 0; a < dim; ++a) d2 += (q[2 + a] - x[i][size_t(a)]) * (q[2 + a] - x[i][size_t(a)]);
             if (d2 < s * s && !held.count(long(q[0])))

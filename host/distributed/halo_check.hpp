@@ -15,9 +15,12 @@ namespace mfsd::distributed {
 // Collective. Per local particle: global index, ghost flag, body and current
 // position; `support` per body. Empty when complete, else the first partner
 // missing ("particle g misses partner k at distance d").
+// With `across_bodies`, partners of any body count (the contact's reach,
+// `support` then being per body of the owned particle).
 std::string missing_partner(GhostExchange& exchange, const std::vector<long>& global,
                             const std::vector<unsigned char>& ghost, const std::vector<int>& body,
-                            const std::vector<std::array<double, 3>>& x, const std::vector<double>& support, int dim);
+                            const std::vector<std::array<double, 3>>& x, const std::vector<double>& support, int dim,
+                            bool across_bodies = false);
 
 // Whether MFSD_VERIFY_HALO asks for the check.
 bool halo_check_requested();

@@ -202,6 +202,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
       parallel_for<B>(n, ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
     });
     if (contact_.enabled()) {
+      if (this->ghosts_ && distributed::halo_check_requested()) verify_contact_halo();
       halo({field::velocity});  // the contact's partners across the cut
       run("contact", [&] { contact_.apply(this->kinematics(), time_, dt, results_); });
     }
@@ -479,22 +480,39 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
 
   // MFSD_VERIFY_HALO=1: after every search, the brute-force check that each
   // owned particle's partners are all held here (host/distributed/halo_check.hpp).
+  // MFSD_VERIFY_HALO=1 with contact: at every step, every particle of any
+  // body within the contact's reach of an owned particle is held here (the
+  // contact searches its pairs at every step, with positions moved since the
+  // last search).
+  void verify_contact_halo() {
+    double spacing = 0;
+    for (const auto& b : scene_.bodies) spacing = std::max(spacing, b.spacing);
+    verify_halo(std::vector<double>(scene_.bodies.size(), kContactRateReach * spacing), true);
+  }
+
   void verify_halo() {
+    std::vector<double> support;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) support.push_back(2.0 * props(b).h);
+    verify_halo(support, false);
+  }
+
+  void verify_halo(const std::vector<double>& support, bool across_bodies) {
     const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    // The search's positions, or (contact) those of this step: X + u.
+    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
     const auto x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
     std::vector<long> global;
     std::vector<std::array<double, 3>> position;
     for (size_t i = 0; i < ids.size(); ++i) {
       global.push_back(this->ghosts_->global_id(long(ids[i])));
       std::array<double, 3> p{0, 0, 0};
-      for (int a = 0; a < D; ++a) p[size_t(a)] = double(x[i].v[a]);
+      for (int a = 0; a < D; ++a) p[size_t(a)] = across_bodies ? double(X[i].v[a] + u[i].v[a]) : double(x[i].v[a]);
       position.push_back(p);
     }
-    std::vector<double> support;
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) support.push_back(2.0 * props(b).h);
     const std::string missing = distributed::missing_partner(
         *this->ghosts_, global, to_host<B>(particles_.template buffer<unsigned char>(field::ghost)),
-        to_host<B>(particles_.template buffer<int>(field::body)), position, support, D);
+        to_host<B>(particles_.template buffer<int>(field::body)), position, support, D, across_bodies);
     if (!missing.empty())
       throw std::logic_error("distributed ULSPH halo incomplete at step " + std::to_string(steps_) + ": " + missing);
     ++halo_checks_;
