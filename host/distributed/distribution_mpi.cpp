@@ -160,7 +160,7 @@ class MpiGhostExchange final : public GhostExchange {
   }
   int rank() const override { return world_rank(); }
   double bytes_sent() const { return bytes_sent_; }
-  static constexpr int kTag = 25, kMigrationTag = 26, kBlockTag = 27;
+  static constexpr int kTag = 25, kBlockTag = 27;
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
 
@@ -272,37 +272,26 @@ class MpiGhostExchange final : public GhostExchange {
           const char* r = records.data() + slot.at(g) * record_bytes;
           out[size_t(q)].insert(out[size_t(q)].end(), r, r + record_bytes);
         }
-    // In: this rank's holdings, grouped by their old owner.
+    // In: this rank's holdings, grouped by their old owner (the other ranks
+    // in rank order, as exchange_blocks returns them, then this one).
+    for (int q = 0; q < ranks; ++q)
+      if (q != me) migrated_bytes_ += double(out[size_t(q)].size());
+    const double sent_before = bytes_sent_;
     Arrivals a;
-    std::vector<size_t> from(static_cast<size_t>(ranks), 0);
-    for (int q = 0; q < ranks; ++q)
-      for (long g : held[size_t(me)])
-        if (old_owner[size_t(g)] == q) {
-          a.global_id.push_back(g);
-          a.ghost.push_back(next.owner[size_t(g)] != me ? 1 : 0);
-          from[size_t(q)] += record_bytes;
-        }
-    a.records.resize(a.global_id.size() * record_bytes);
-    std::vector<MPI_Request> requests;
-    size_t at = 0;
-    for (int q = 0; q < ranks; ++q) {
-      if (q == me)
-        std::copy(out[size_t(q)].begin(), out[size_t(q)].end(), a.records.begin() + long(at));
-      else if (from[size_t(q)] > 0) {
-        requests.emplace_back();
-        MPI_Irecv(a.records.data() + at, int(from[size_t(q)]), MPI_BYTE, q, kMigrationTag, MPI_COMM_WORLD,
-                  &requests.back());
+    a.records = exchange_blocks(out);
+    bytes_sent_ = sent_before;  // counted as migration, not as refreshes
+    a.records.insert(a.records.end(), out[size_t(me)].begin(), out[size_t(me)].end());
+    for (int pass = 0; pass < 2; ++pass)
+      for (int q = 0; q < ranks; ++q) {
+        if ((pass == 0) == (q == me)) continue;
+        for (long g : held[size_t(me)])
+          if (old_owner[size_t(g)] == q) {
+            a.global_id.push_back(g);
+            a.ghost.push_back(next.owner[size_t(g)] != me ? 1 : 0);
+          }
       }
-      at += from[size_t(q)];
-    }
-    for (int q = 0; q < ranks; ++q)
-      if (q != me && !out[size_t(q)].empty()) {
-        requests.emplace_back();
-        MPI_Isend(out[size_t(q)].data(), int(out[size_t(q)].size()), MPI_BYTE, q, kMigrationTag, MPI_COMM_WORLD,
-                  &requests.back());
-        migrated_bytes_ += double(out[size_t(q)].size());
-      }
-    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    if (a.records.size() != a.global_id.size() * record_bytes)
+      throw std::logic_error("migration: the records received do not match the holdings");
     ++migrations_;
     if (next.rebalanced) ++rebalances_;
     decomposition_ = next.decomposition;
