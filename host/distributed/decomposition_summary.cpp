@@ -17,7 +17,10 @@ double halo_radius(const Scene& scene) {
     if (b.method == Method::rkpm) {
       const RkpmSpec& k = scene.solver.rkpm;
       const double reach = k.box_supports ? std::sqrt(double(dim)) : 1.0;
-      r = std::max(r, (k.support_factor * reach + 0.5 * std::sqrt(double(dim)) + k.skin) * b.spacing);
+      // The list's radius (the support, the cell's half diagonal and the
+      // skin) and one spacing for the travel between migrations; a
+      // migration widens it as the supports and cells grow (rkpm_solver.hpp).
+      r = std::max(r, (k.support_factor * reach + 0.5 * std::sqrt(double(dim)) + k.skin + 1.0) * b.spacing);
     } else if (b.method == Method::ulsph) {
       // The support and one h of skin: a distributed ULSPH run keeps its
       // set-up's ghosts (docs/distributed.md).

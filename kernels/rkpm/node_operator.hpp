@@ -19,7 +19,7 @@ struct NodeOperator {
   Vec<D, Real> offset[2 * D];                // xbar_f - x_L
   Vec<D, Real> area[2 * D];                  // a_f
   Vec<D + 1, Real> b[kPoints];               // RK coefficients (seed 004 eq. 18)
-  Index kronecker[kPoints];                  // a singular node at the point, else kNoKronecker
+  Index kronecker[kPoints];                  // a singular node at the point, else kNoKronecker (kronecker_ids.hpp)
   Real volume;                               // V_L = J V0
   Real inv_abar;                             // 1/abar, abar = a_L (basis scaling, rkpm.md 1.3)
 };

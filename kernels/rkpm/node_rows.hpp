@@ -76,8 +76,11 @@ struct StepStatsFunctor {
   double dt;
   Vec<D, Real> lower, upper;  // scene bounds
   Index n;
+  const unsigned char* ghost = nullptr;  // distributed runs: ghosts count for nothing (their owners do)
 
   MFSD_HD StepStats<D, Real> operator()(Index i) const {
+    if (ghost && ghost[i])
+      return StepStats<D, Real>{Real(0), Real(0), Real(0), Real(0), Real(INFINITY), n, BoundingBox<D, Real>::empty()};
     const Vec<D, Real> v = velocity[i];
     const Vec<D, Real> x = reference_position[i] + displacement[i];
     const double J = double(det(cell_map[i]));

@@ -7,10 +7,13 @@ planes) agrees row by row within round-off, relative to each column's largest
 magnitude (at least 1e-6 of the file's largest), and that the last snapshot's PVTU pieces hold every particle once
 with the same displacements. Exit 0 when they agree; prints the worst column.
 
-  compare_outputs.py MFSD MPIEXEC RANKS SCENE TOLERANCE [--migrates] [--set k=v ...]
+  compare_outputs.py MFSD MPIEXEC RANKS SCENE TOLERANCE [--migrates] [--skip FILE] [--set k=v ...]
 
 --migrates: the distributed run must also have migrated particles between
 the ranks (its report's "migrations: N", N > 0).
+--skip FILE: a series left out, for a scene where it holds round-off alone
+(the reaction on a body whose every node is prescribed sums to ~1e-8 N in
+both runs); the test says why.
 """
 import csv
 import os
@@ -67,6 +70,11 @@ def main():
     extra = sys.argv[6:]
     migrates = "--migrates" in extra
     extra = [a for a in extra if a != "--migrates"]
+    skipped = []
+    while "--skip" in extra:
+        k = extra.index("--skip")
+        skipped.append(extra[k + 1])
+        del extra[k:k + 2]
     tol = float(tol)
     work = tempfile.mkdtemp(prefix="mfsd_mpi_")
     serial, dist = os.path.join(work, "serial"), os.path.join(work, "ranks")
@@ -78,7 +86,7 @@ def main():
         assert m and int(m.group(1)) > 0, "the distributed run migrated no particle:\n" + r.stdout[-2000:]
         print("%s migrations, %s rebalances" % (m.group(1), m.group(2)))
     worst, where = 0.0, ""
-    series = sorted(f for f in os.listdir(serial) if f.endswith(".csv"))
+    series = sorted(f for f in os.listdir(serial) if f.endswith(".csv") and f not in skipped)
     assert series, "the scene writes no CSV series"
     for name in series:
         h1, a = load(os.path.join(serial, name))

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "host/backend/device_results.hpp"
+#include "host/distributed/halo_check.hpp"
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
@@ -411,6 +412,37 @@ class ParticleSolver : public Solver {
     ghosts_->max_over_ranks(v);
     s.max_speed2 = Real(v[0]), s.max_acceleration2 = Real(v[1]);
     s.max_inverse_stretch = Real(v[2]), s.max_stiffening = Real(v[3]);
+  }
+
+  // MFSD_VERIFY_HALO=1 (test only; host/distributed/halo_check.hpp): every
+  // particle within `support` (per body of the owned particle) of an owned
+  // particle at the positions x, of its own body or (across_bodies) of any,
+  // is held by this rank; else the run stops with the missing pair.
+  void verify_halo(const std::vector<Vec<D, Real>>& x, const std::vector<double>& support, bool across_bodies) {
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    std::vector<long> global;
+    std::vector<std::array<double, 3>> position;
+    for (size_t i = 0; i < ids.size(); ++i) {
+      global.push_back(ghosts_->global_id(long(ids[i])));
+      std::array<double, 3> p{0, 0, 0};
+      for (int a = 0; a < D; ++a) p[size_t(a)] = double(x[i].v[a]);
+      position.push_back(p);
+    }
+    const std::string missing = distributed::missing_partner(
+        *ghosts_, global, to_host<B>(particles_.template buffer<unsigned char>(field::ghost)),
+        to_host<B>(particles_.template buffer<int>(field::body)), position, support, D, across_bodies);
+    if (!missing.empty())
+      throw std::logic_error(std::string("distributed ") + to_string(scene_.solver.method) +
+                             " halo incomplete at step " + std::to_string(steps_) + ": " + missing);
+  }
+
+  // The owned particles among [begin, end) (all of them in a single-process run).
+  Index owned_in(Index begin, Index end) {
+    if (!ghosts_) return end - begin;
+    const auto& mask = ghosts_->ghost_mask();  // by local id: the ranges hold the same particles
+    Index owned = 0;
+    for (Index i = begin; i < end; ++i) owned += mask[size_t(i)] ? 0 : 1;
+    return owned;
   }
 
   // Null in a single-process run; else 1 per ghost particle, in the solver's order.

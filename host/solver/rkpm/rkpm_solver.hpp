@@ -27,14 +27,18 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
+#include "host/distributed/decomposition_summary.hpp"
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/solver/common/particle_solver.hpp"
+#include "kernels/core/owned_only.hpp"
 #include "kernels/neighbors/bounding_box.hpp"
 #include "kernels/rkpm/internal_force.hpp"
+#include "kernels/rkpm/kronecker_ids.hpp"
 #include "kernels/rkpm/node_rows.hpp"
 #include "kernels/rkpm/step.hpp"
 
@@ -66,11 +70,27 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     const Index n = particles_.size();
     this->upload_kinematics();
     add_state();
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      body_total_.push_back(double(this->owned_in(ranges_[b].begin, ranges_[b].end)));
+    if (this->ghosts_) this->ghosts_->sum_over_ranks(body_total_);  // the cell grid of the whole body
+    halo_radius_ = distributed::halo_radius(scene_);
     // Initial cells, supports and the first list, sorted and reordered by cell.
     parallel_for<B>(n, move_functor_all());
     rebuild(scene_.solver.reorder);
     particles_.remove(field::reference_position_double);
+    if (this->ghosts_) {  // each node's place in the single-process order (migrate_particles)
+      particles_.template add<std::int64_t>(field::order_key);
+      if (scene_.solver.reorder)
+        thrust::copy(BackendTraits<B>::policy(), cells_.keys.begin(), cells_.keys.end(),
+                     particles_.template buffer<std::int64_t>(field::order_key).begin());
+    }
+    this->bind_ghosts();  // distributed runs: the exchange in the sorted order
+    // The singular kernels of the essential nodes: the conditions' lists
+    // hold this rank's owned nodes only, so a ghost learns it from its owner.
+    this->refresh_ghosts({field::singular});
+    bind_kronecker_ids();
     build_operators();
+    refresh_all();  // the ghosts' operators (their rows are cut) from their owners
     const long under = count_status(4u);
     if (under > 0)
       throw SceneError("/solver/rkpm/support_factor",
@@ -84,6 +104,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
                        "\"regularize\" or \"shepard\", or a larger support_factor (rkpm.md 1.6)");
     regularized_at_setup_ = count_status(1u);
     force(0.0);  // the lumped masses
+    refresh_all();
 
     snapshot_fields_ = {{"von_mises", field::von_mises}, {"J", field::jacobian}, {"pressure", field::pressure}};
     if (particles_.has(field::plastic_strain)) snapshot_fields_.emplace_back("plastic_strain", field::plastic_strain);
@@ -97,6 +118,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     conditions_.apply_initial(this->kinematics(), results_);
     results_.fetch();
     conditions_.collect(results_, this->kinematics());
+    refresh_all();
     for (size_t b = 0; b < scene_.bodies.size(); ++b) gravity_at_start_.push_back(gravity_potential(b));
     const auto stats = host_stats(0.0);
     dt_next_ = time_step(stats);
@@ -110,15 +132,24 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
 
   void begin_step() override {
     this->round_trips_before_ = round_trips();
-    const Index n = particles_.size();
     const double dt = this->step_dt_ = dt_next_;
     results_.clear();
     run("half_step", [&] {
-      parallel_for<B>(n, rkpm::DriftFunctor<D, Real>{velocity(), displacement(), increment(), Real(0.5 * dt)});
+      parallel_for<B>(particles_.size(),
+                      rkpm::DriftFunctor<D, Real>{velocity(), displacement(), increment(), Real(0.5 * dt)});
     });
     run("stress", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) stress(b, dt);
     });
+    halo({field::effective_stress, field::nsni_stress, field::damage, field::cell_map});
+    if (rebuild_due_ && this->ghosts_ && !distributed::migration_switched_off() && migration_due()) {
+      run("migrate", [&] {
+        halo_radius_ = std::max(distributed::halo_radius(scene_), list_radius() + migration_margin());
+        this->migrate_particles(halo_radius_);
+      });
+      migration_travelled_ = 0;
+    }
+    const Index n = particles_.size();  // a migration changes this rank's nodes
     if (rebuild_due_) {
       run("neighbors", [&] {
         parallel_for<B>(n, move_functor_all());
@@ -129,13 +160,22 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       if (!rebuild_due_) parallel_for<B>(n, move_functor_all());
       build_operators();
     });
+    if (this->ghosts_)
+      run("halo", [&] {
+        kronecker_ids(true);
+        this->refresh_ghosts({field::node_operator, field::implicit_gradient, field::operator_status});
+        kronecker_ids(false);
+      });
     rebuild_due_ = false;
     run("force", [&] { force(dt); });
-    if (contact_.enabled())
+    if (contact_.enabled()) {
+      if (this->ghosts_ && distributed::halo_check_requested()) verify_contact_halo();
+      halo({field::velocity, field::lumped_volume});  // the contact's partners across the cut
       run("contact", [&] {
         contact_.refresh_masses(real(field::lumped_volume));  // M_I of this step's force stage
         contact_.apply(this->kinematics(), time_, dt, results_);
       });
+    }
   }
 
   void end_step() override {
@@ -144,6 +184,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     const Kinematics<D, Real> k = this->kinematics();
     if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
     run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
+    halo({field::velocity});
     std::vector<ResultSlot<rkpm::StepStats<D, Real>>> slots;
     run("advance", [&] {
       parallel_for<B>(n, rkpm::DriftFunctor<D, Real>{velocity(), displacement(), increment(), Real(0.5 * dt)});
@@ -157,8 +198,12 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
       contact_.collect(results_);
       std::vector<rkpm::StepStats<D, Real>> stats;
       for (auto& s : slots) stats.push_back(results_.get(s));
+      stats_over_ranks(stats);
       time_ += dt;
       ++steps_;
+      double speed2 = 0;
+      for (const auto& s : stats) speed2 = std::max(speed2, double(s.max_speed2));
+      migration_travelled_ += dt * std::sqrt(speed2);
       for (const auto& s : stats)
         if (s.first_bad < n) Base::fail(s.first_bad, {"cell_map", "J = det F_cell is not positive"});
       decide_rebuild(stats);
@@ -195,6 +240,18 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     a.put("rkpm/neighbor", to_host<B>(neighbor_));
     a.put("rkpm/build_reach", build_reach_);
     a.put_value("rkpm/rebuild_due", rebuild_due_ ? 1L : 0L);
+    // The last step's statistics: the next rebuild's grid and radius (a
+    // grid of another box orders the rows otherwise, and the run would
+    // continue with other round-off).
+    std::vector<double> stats;
+    for (const auto& s : last_stats_) {
+      stats.insert(stats.end(), {double(s.max_speed2), double(s.max_drift2), double(s.max_support),
+                                 double(s.max_cell_reach), double(s.min_dt)});
+      for (int k = 0; k < D; ++k) stats.push_back(double(s.box.lo.v[k])), stats.push_back(double(s.box.hi.v[k]));
+    }
+    a.put("rkpm/last_stats", stats);
+    a.put_value("rkpm/migration_travelled", migration_travelled_);
+    a.put_value("rkpm/halo_radius", halo_radius_);
   }
 
   void restore_state(const StateArchive& a) override {
@@ -206,6 +263,21 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     from_host<B>(a.get<Index>("rkpm/neighbor", long(pairs_) + kPairPrefetchDistance), neighbor_);
     build_reach_ = a.get<double>("rkpm/build_reach", long(scene_.bodies.size()));
     rebuild_due_ = a.get_value<long>("rkpm/rebuild_due") != 0;
+    if (a.has("rkpm/last_stats")) {
+      const size_t per = 5 + 2 * D;
+      const std::vector<double> stats = a.get<double>("rkpm/last_stats", -1);
+      last_stats_.clear();
+      for (size_t k = 0; k + per <= stats.size(); k += per) {
+        rkpm::StepStats<D, Real> s = stats_init();
+        s.max_speed2 = Real(stats[k]), s.max_drift2 = Real(stats[k + 1]), s.max_support = Real(stats[k + 2]);
+        s.max_cell_reach = Real(stats[k + 3]), s.min_dt = Real(stats[k + 4]);
+        for (int d = 0; d < D; ++d)
+          s.box.lo.v[d] = Real(stats[k + 5 + 2 * d]), s.box.hi.v[d] = Real(stats[k + 6 + 2 * d]);
+        last_stats_.push_back(s);
+      }
+    }
+    if (a.has("rkpm/migration_travelled")) migration_travelled_ = a.get_value<double>("rkpm/migration_travelled");
+    if (a.has("rkpm/halo_radius")) halo_radius_ = a.get_value<double>("rkpm/halo_radius");
   }
 
  private:
@@ -323,6 +395,13 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
         r_max = 0.5 * dp * std::sqrt(double(D)) + a_max * (rkpm::kernel_reach_factor<D>(spec_.box_supports) - 1.0);
         box = transform_reduce<B>(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
                                   BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{});
+        if (this->ghosts_) {  // the whole body's (every rank's cells are the single-process run's)
+          std::vector<double> v{a_max, r_max};
+          for (int a = 0; a < D; ++a) v.push_back(-double(box.lo.v[a])), v.push_back(double(box.hi.v[a]));
+          this->ghosts_->max_over_ranks(v);
+          a_max = v[0], r_max = v[1];
+          for (int a = 0; a < D; ++a) box.lo.v[a] = Real(-v[2 + 2 * a]), box.hi.v[a] = Real(v[3 + 2 * a]);
+        }
       }
       // The supports grow with J after the reduction, by far less than the skin.
       build_reach_[b] = a_max + r_max;
@@ -334,7 +413,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
         hi[a] = std::max(lo[a], double(box.hi.v[a]));
         cells *= std::floor((hi[a] - lo[a]) / cell) + 1;
       }
-      const double limit = std::max(64.0, 4.0 * double(r.size()));
+      const double limit = std::max(64.0, 4.0 * body_total_[b]);
       if (cells > limit) cell *= std::pow(cells / limit, 1.0 / D);
       grids.push_back(make_cell_grid<D, Real>(lo, hi, cell, first));
       first += grids.back().cells;
@@ -350,6 +429,136 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     }
     const Vec<D, Real>* x = particles_.template get<Vec<D, Real>>(field::operator_position);
     thrust::copy(BackendTraits<B>::policy(), x, x + n, particles_.template get<Vec<D, Real>>(field::build_position));
+    if (this->ghosts_ && distributed::halo_check_requested()) {  // every owned row complete
+      std::vector<double> radius;
+      for (const auto& s : search_) radius.push_back(2.0 * s.smoothing_length);
+      Base::verify_halo(to_host<B>(particles_.template buffer<Vec<D, Real>>(field::operator_position)), radius, false);
+    }
+  }
+
+  // ---- distributed runs (docs/distributed.md, "RKPM") ---------------------
+  // The ghosts are the nodes within halo_radius_ of this rank's region at
+  // the last migration. Each refresh holds what the gathers until the next
+  // one read of a partner and a ghost's own cut row got wrong:
+  //   after the stress: sigma_bar, tau^(i), the damage (the force reads
+  //     them of row I's nodes) and F_cell (the move's supports a = a~ h0 J^(1/d));
+  //   after the operators: each node's RK coefficients, its NSNI implicit
+  //     gradients and status (the force evaluates Psi_I at x_L from L's);
+  //   with contact, after the force: v and M_I / rho0 (the contact's partners);
+  //   after the boundary conditions: v (the drifts, du and so the stress).
+  // Every other field a ghost holds is its own function of these (x, a,
+  // du) or is read of no partner (the work sums, eps_p, sigma^(i)).
+  void halo(std::initializer_list<const char*> names) {
+    if (this->ghosts_) run("halo", [&] { this->refresh_ghosts(names); });
+  }
+
+  // The list's radius at the next rebuild: max a + max r + skin (rkpm.md 2).
+  double list_radius() const {
+    double r = 0;
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {
+      const double reach = b < last_stats_.size()
+                               ? double(last_stats_[b].max_support) + double(last_stats_[b].max_cell_reach)
+                               : build_reach_[b];
+      r = std::max(r, reach + spec_.skin * scene_.bodies[b].spacing);
+    }
+    return r;
+  }
+  // Room for the travel between migrations beyond the list (one spacing).
+  double migration_margin() const {
+    double dp = 0;
+    for (const auto& b : scene_.bodies) dp = std::max(dp, b.spacing);
+    return dp;
+  }
+  // A rebuild migrates first when its rows may reach past the ghosts. An
+  // owned node is within d (the travel bound, sum dt max|v|) of the region,
+  // and a node within the list radius R of it now was within R + 2d of the
+  // region at the last migration: the ghosts hold every row while
+  // R + 2d <= halo_radius_, with a fifth of the margin kept for the change
+  // of v within a step (as ULSPH, docs/distributed.md). The supports grow
+  // with J and the cells' reach with their stretch: a migration takes the
+  // halo to the current list radius plus the margin. With contact, its
+  // reach plus twice the travel until the next rebuild (at most half the
+  // skin) stays within the halo too.
+  bool migration_due() const {
+    double spacing = 0, skin = 0;
+    for (const auto& b : scene_.bodies) spacing = std::max(spacing, b.spacing);
+    skin = spec_.skin * spacing;
+    double reach = 0.4 * (halo_radius_ - list_radius());
+    if (scene_.contact.enabled)
+      reach = std::min(reach, 0.4 * (halo_radius_ - kContactRateReach * spacing) - 0.5 * skin);
+    return migration_travelled_ > reach;
+  }
+
+  // Every field of the ghosts from their owners (set-up), the operators'
+  // Kronecker nodes by global index in between (kernels/rkpm/kronecker_ids.hpp).
+  void refresh_all() {
+    if (!this->ghosts_) return;
+    kronecker_ids(true);
+    this->refresh_all_ghosts();
+    kronecker_ids(false);
+  }
+  // The operators' Kronecker nodes from local to global indices (the owned
+  // operators, before a refresh) or from global to local (all, after it).
+  void kronecker_ids(bool to_global) {
+    Op* op = particles_.template get<Op>(field::node_operator);
+    if (to_global)
+      parallel_for<B>(particles_.size(), rkpm::KroneckerToGlobal<D, Real>{op, raw(global_of_local_)});
+    else
+      parallel_for<B>(particles_.size(), rkpm::KroneckerToLocal<D, Real>{op, raw(sorted_global_), raw(local_of_sorted_),
+                                                                         Index(sorted_global_.size())});
+  }
+  // The maps of kronecker_ids(), for the particles held now.
+  void bind_kronecker_ids() {
+    if (!this->ghosts_) return;
+    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
+    std::vector<Index> global(ids.size()), order(ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) global[i] = Index(this->ghosts_->global_id(long(ids[i])));
+    std::iota(order.begin(), order.end(), Index(0));
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) { return global[size_t(a)] < global[size_t(b)]; });
+    std::vector<Index> sorted(ids.size());
+    for (size_t k = 0; k < order.size(); ++k) sorted[k] = global[size_t(order[k])];
+    from_host<B>(global, global_of_local_);
+    from_host<B>(sorted, sorted_global_);
+    from_host<B>(order, local_of_sorted_);
+  }
+
+  void after_migration() override {
+    for (size_t b = 0; b < search_.size(); ++b) search_[b].range = ranges_[b];
+    bind_kronecker_ids();
+    if (scene_.contact.enabled) this->setup_contact_again(std::vector<unsigned char>(size_t(particles_.size()), 1));
+  }
+
+  // MFSD_VERIFY_HALO=1 with contact: at every step, every node of any body
+  // within the contact's reach of an owned node is held here.
+  void verify_contact_halo() {
+    double spacing = 0;
+    for (const auto& b : scene_.bodies) spacing = std::max(spacing, b.spacing);
+    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
+    auto x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
+    for (size_t i = 0; i < x.size(); ++i) x[i] += X[i];
+    Base::verify_halo(x, std::vector<double>(scene_.bodies.size(), kContactRateReach * spacing), true);
+  }
+
+  bool ghosts_supported() const override { return true; }
+  bool ghosts_are_current_neighbours() const override { return true; }
+
+  // Distributed runs: the step's statistics over the whole scene (the
+  // index of a failed node stays this rank's).
+  void stats_over_ranks(std::vector<rkpm::StepStats<D, Real>>& stats) {
+    if (!this->ghosts_) return;
+    std::vector<double> v;
+    for (const auto& s : stats) {
+      v.insert(v.end(), {double(s.max_speed2), double(s.max_drift2), double(s.max_support), double(s.max_cell_reach),
+                         -double(s.min_dt)});
+      for (int a = 0; a < D; ++a) v.push_back(-double(s.box.lo.v[a])), v.push_back(double(s.box.hi.v[a]));
+    }
+    this->ghosts_->max_over_ranks(v);
+    size_t k = 0;
+    for (auto& s : stats) {
+      s.max_speed2 = Real(v[k++]), s.max_drift2 = Real(v[k++]), s.max_support = Real(v[k++]);
+      s.max_cell_reach = Real(v[k++]), s.min_dt = Real(-v[k++]);
+      for (int a = 0; a < D; ++a) s.box.lo.v[a] = Real(-v[k++]), s.box.hi.v[a] = Real(v[k++]);
+    }
   }
 
   // Rebuild when 2 drift + growth of a + r > skin (rkpm.md 2).
@@ -400,11 +609,15 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   }
 
   // Nodes whose operator status has `bit` (set-up checks and report).
+  // Distributed runs: the owned nodes of every rank (a ghost's row is cut).
   long count_status(unsigned char bit) {
-    long c = 0;
-    for (unsigned char v : to_host<B>(particles_.template buffer<unsigned char>(field::operator_status)))
-      c += (v & bit) ? 1 : 0;
-    return c;
+    const auto status = to_host<B>(particles_.template buffer<unsigned char>(field::operator_status));
+    const std::vector<unsigned char> none;
+    const std::vector<unsigned char>& ghost = this->ghosts_ ? this->ghosts_->ghost_mask() : none;
+    std::vector<double> c{0.0};
+    for (size_t i = 0; i < status.size(); ++i) c[0] += (status[i] & bit) && (ghost.empty() || !ghost[i]) ? 1 : 0;
+    if (this->ghosts_) this->ghosts_->sum_over_ranks(c);
+    return long(c[0]);
   }
 
   rkpm::StressLaw law(size_t b) {
@@ -521,6 +734,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
                                       {},
                                       {},
                                       particles_.size()};
+    f.ghost = this->ghost_flags();
     for (int a = 0; a < D; ++a) {
       f.lower.v[a] = Real(scene_.bounds.min[a]);
       f.upper.v[a] = Real(scene_.bounds.max[a]);
@@ -536,6 +750,7 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
     for (size_t b = 0; b < scene_.bodies.size(); ++b)
       s.push_back(transform_reduce<B>(ranges_[b].begin, ranges_[b].end, stats_functor(b, dt), stats_init(),
                                       rkpm::StepStatsCombine<D, Real>{}));
+    stats_over_ranks(s);
     return s;
   }
 
@@ -549,11 +764,13 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   }
 
   rkpm::EnergySums energy(size_t b) {
-    return transform_reduce<B>(ranges_[b].begin, ranges_[b].end,
-                               rkpm::EnergyFunctor<D, Real>{
-                                   velocity(), real(field::lumped_mass), real(field::internal_work),
-                                   this->optional_real(field::plastic_work), this->optional_real(field::damping_work)},
-                               rkpm::EnergySums{0, 0, 0, 0, {0, 0, 0}}, rkpm::EnergySumsPlus{});
+    using Energy = rkpm::EnergyFunctor<D, Real>;
+    return transform_reduce<B>(
+        ranges_[b].begin, ranges_[b].end,
+        OwnedOnly<Energy>{Energy{velocity(), real(field::lumped_mass), real(field::internal_work),
+                                 this->optional_real(field::plastic_work), this->optional_real(field::damping_work)},
+                          this->ghost_flags()},
+        rkpm::EnergySums{0, 0, 0, 0, {0, 0, 0}}, rkpm::EnergySumsPlus{});
   }
 
   // sum m g . u with the nodal masses (the gravity's work since the start
@@ -561,9 +778,11 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   double gravity_potential(size_t b) {
     Vec<D, Real> g;
     for (int a = 0; a < D; ++a) g.v[a] = Real(scene_.solver.gravity[a]);
-    return transform_reduce<B>(ranges_[b].begin, ranges_[b].end,
-                               rkpm::GravityPotentialFunctor<D, Real>{displacement(), real(field::mass), g}, 0.0,
-                               rkpm::PlusDouble{});
+    using Potential = rkpm::GravityPotentialFunctor<D, Real>;
+    return transform_reduce<B>(
+        ranges_[b].begin, ranges_[b].end,
+        OwnedOnly<Potential>{Potential{displacement(), real(field::mass), g}, this->ghost_flags()}, 0.0,
+        rkpm::PlusDouble{});
   }
 
   void update_observables() override {
@@ -590,12 +809,16 @@ class RkpmSolver final : public ParticleSolver<B, D, Real> {
   DeviceVector<B, PairIndex> offsets_;
   DeviceVector<B, Index> neighbor_;
   DeviceVector<B, double> support_lengths_;
+  DeviceVector<B, Index> global_of_local_, sorted_global_, local_of_sorted_;  // kronecker_ids()
   PairIndex pairs_ = 0;
   long regularized_at_setup_ = 0;
   bool has_loads_ = false;
   bool rebuild_due_ = false;
   std::vector<double> gravity_at_start_;
   std::vector<rkpm::StepStats<D, Real>> last_stats_;  // per body, of the last step
+  std::vector<double> body_total_;  // nodes of each body in the whole scene (distributed runs: all ranks')
+  double halo_radius_ = 0;          // distributed runs: the ghosts' reach at the last migration
+  double migration_travelled_ = 0;  // distributed runs: sum dt |v|max since the last migration
 };
 
 }  // namespace mfsd

@@ -105,7 +105,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     // The first search sorts the particles by cell and, with solver.reorder,
     // permutes every field into that order (memory locality for the run);
     // later rebuilds keep the order and search through the cell order.
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) body_total_.push_back(double(owned_in(ranges_[b])));
+    for (size_t b = 0; b < scene_.bodies.size(); ++b)
+      body_total_.push_back(double(this->owned_in(ranges_[b].begin, ranges_[b].end)));
     if (this->ghosts_) this->ghosts_->sum_over_ranks(body_total_);  // the cell grid of the whole body
     boxes_ = host_boxes();
     globalize_boxes();
@@ -425,14 +426,6 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (this->ghosts_) run("halo", [&] { this->refresh_ghosts(names); });
   }
 
-  Index owned_in(const BodyRange& r) {
-    if (!this->ghosts_) return r.size();
-    const auto& mask = this->ghosts_->ghost_mask();  // by local id: the ranges hold the same particles
-    Index owned = 0;
-    for (Index i = r.begin; i < r.end; ++i) owned += mask[size_t(i)] ? 0 : 1;
-    return owned;
-  }
-
   // Distributed runs: the boxes of the whole bodies (every rank's cells are
   // the single-process run's).
   void globalize_boxes() {
@@ -497,25 +490,14 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   }
 
   void verify_halo(const std::vector<double>& support, bool across_bodies) {
-    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
     // The search's positions, or (contact) those of this step: X + u.
-    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
-    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
-    const auto x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
-    std::vector<long> global;
-    std::vector<std::array<double, 3>> position;
-    for (size_t i = 0; i < ids.size(); ++i) {
-      global.push_back(this->ghosts_->global_id(long(ids[i])));
-      std::array<double, 3> p{0, 0, 0};
-      for (int a = 0; a < D; ++a) p[size_t(a)] = across_bodies ? double(X[i].v[a] + u[i].v[a]) : double(x[i].v[a]);
-      position.push_back(p);
+    std::vector<Vec<D, Real>> x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
+    if (across_bodies) {
+      const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
+      const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
+      for (size_t i = 0; i < x.size(); ++i) x[i] = X[i] + u[i];
     }
-    const std::string missing = distributed::missing_partner(
-        *this->ghosts_, global, to_host<B>(particles_.template buffer<unsigned char>(field::ghost)),
-        to_host<B>(particles_.template buffer<int>(field::body)), position, support, D, across_bodies);
-    if (!missing.empty())
-      throw std::logic_error("distributed ULSPH halo incomplete at step " + std::to_string(steps_) + ": " + missing);
-    ++halo_checks_;
+    Base::verify_halo(x, support, across_bodies);
   }
 
   // x = X + u into current_position and V = m / rho into current_volume.
@@ -721,7 +703,6 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   double advection_step_ = 0, advection_elapsed_ = 0;
   double advection_travelled_ = 0;  // sum dt |v|max since the last search
   double migration_travelled_ = 0;  // distributed runs: sum dt |v|max since the last migration
-  long halo_checks_ = 0;            // MFSD_VERIFY_HALO: searches checked
   std::vector<double> gravity_at_start_;
 };
 
