@@ -478,6 +478,43 @@ class DistributedSolver final : public Solver {
     return e;
   }
 
+  // Each crack's tip over the ranks: the first by kernels/fracture/crack_tip.hpp's
+  // order (the further reach, then the lower reference position), as one process finds it.
+  std::vector<CrackTipSample> crack_tips() override {
+    std::vector<CrackTipSample> tips = inner_->crack_tips();
+    constexpr int kItem = 12;  // broken, reach, reference (3), tip (3), length, padding
+    std::vector<double> mine;
+    for (const CrackTipSample& t : tips) {
+      mine.insert(mine.end(), {t.broken ? 1.0 : 0.0, t.reach, t.reference[0], t.reference[1], t.reference[2], t.tip[0],
+                               t.tip[1], t.tip[2], t.length, 0.0, 0.0, 0.0});
+    }
+    const int n = int(mine.size()), ranks = world_size();
+    std::vector<double> all(size_t(n) * size_t(ranks));
+    MPI_Allgather(mine.data(), n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, MPI_COMM_WORLD);
+    for (size_t k = 0; k < tips.size(); ++k) {
+      const double* best = nullptr;
+      for (int r = 0; r < ranks; ++r) {
+        const double* t = all.data() + size_t(r) * size_t(n) + k * kItem;
+        if (t[0] == 0.0) continue;
+        bool before = best == nullptr || t[1] > best[1];
+        if (best && t[1] == best[1])
+          for (int a = 2; a < 5; ++a)
+            if (t[a] != best[a]) {
+              before = t[a] < best[a];
+              break;
+            }
+        if (before) best = t;
+      }
+      CrackTipSample& out = tips[k];
+      out.broken = best != nullptr;
+      if (!best) continue;
+      out.reach = best[1];
+      for (int a = 0; a < 3; ++a) out.reference[size_t(a)] = best[2 + a], out.tip[size_t(a)] = best[5 + a];
+      out.length = best[8];
+    }
+    return tips;
+  }
+
   // A probe's mean over its particles: each rank's mean over those it owns, weighted by their number.
   std::vector<ProbeSample> probes() override {
     std::vector<ProbeSample> p = inner_->probes();
@@ -633,7 +670,6 @@ class MpiDistribution final : public Distribution {
       throw SceneError(path, what,
                        "a scene without it on several processes (not distributed yet, docs/distributed.md)");
     };
-    if (has_fracture_body(scene)) refuse("/bodies", "phase-field fracture");
     if (scene.solver.relaxation.enabled) refuse("/solver/relaxation", "dynamic relaxation");
   }
 

@@ -293,7 +293,8 @@ RunResult run_scene(const SceneDocument& doc, const RunOptions& options) {
     }
     if (!crack_csv.empty()) {
       const auto tips = solver->crack_tips();
-      for (size_t k = 0; k < tips.size(); ++k) crack_csv[k]->row(crack_row(scene, solver->time(), tips[k]));
+      for (size_t k = 0; k < tips.size(); ++k)
+        if (root) crack_csv[k]->row(crack_row(scene, solver->time(), tips[k]));
     }
     if (!measure_csv.empty()) {
       const auto m = solver->measures();

@@ -58,6 +58,10 @@ struct CrackTipSample {
   bool broken = false;
   Point3 tip{0, 0, 0};
   double length = 0;
+  // What picks the tip among several (kernels/fracture/crack_tip.hpp): its
+  // reach along the crack and its reference position (distributed runs).
+  double reach = 0;
+  Point3 reference{0, 0, 0};
 };
 
 // Force sum of one clamp or velocity condition (its reaction) or load (the

@@ -51,9 +51,10 @@ class FractureBodyKernels final : public BodyKernelsImpl<B, D, Real, Material, H
   }
 
   EnergySums energy(const TlsphViews<D, Real>& v) const override {
+    using Energy = FractureEnergyFunctor<D, Real, Material>;
     return transform_reduce<B>(
         this->s_.range.begin, this->s_.range.end,
-        FractureEnergyFunctor<D, Real, Material>{this->energy_functor(v), v.pairs, v.correction, fracture_, v.phase},
+        OwnedOnly<Energy>{Energy{this->energy_functor(v), v.pairs, v.correction, fracture_, v.phase}, v.ghost},
         EnergySums{}, EnergySumsPlus{});
   }
 

@@ -325,11 +325,18 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
     run("force", [&] {
       for (auto& k : bodies_) k->acceleration(v_, Real(dt));
     });
-    if (has_fracture_)
+    if (has_fracture_) {
       run("phase_field", [&] {
         for (auto& k : bodies_) k->phase_field_rate(v_, Real(dt));
         for (auto& k : bodies_) k->phase_field_half_step(v_, half_dt);
       });
+      // Distributed runs: the ghosts' s and ds/dt (their Laplacians' rows
+      // are cut). The owned rows' Laplacians and crack surfaces read s; the
+      // ghosts' own stress stage reads both (s_n+1/2 = s + dt/2 ds/dt), and
+      // with them the degradation and the history. Their next values are
+      // read by their own half step alone, whose s the refresh replaces.
+      if (this->ghosts_) run("halo", [&] { this->refresh_ghosts({field::phase_field, field::phase_field_rate}); });
+    }
     if (contact_.enabled()) run("contact", [&] { contact_.apply(v_, time_, dt, results_); });
   }
 
@@ -450,11 +457,13 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
         f.direction.v[a] = Real(c.direction[size_t(a)]);
       }
       const BodyRange r = ranges_[c.body];
-      const CrackTip<Real> tip =
-          transform_reduce<B>(r.begin, r.end, f, CrackTip<Real>{Real(-1e30), r.begin}, CrackTipMax<Real>{});
+      const CrackTip<Real> tip = transform_reduce<B>(
+          r.begin, r.end, f, CrackTip<Real>{Real(-1e30), r.begin, {Real(0), Real(0), Real(0)}}, CrackTipMax<Real>{});
       CrackTipSample sample;
       sample.broken = tip.reach > Real(-1e29);
       if (sample.broken) {
+        sample.reach = double(tip.reach);
+        for (int a = 0; a < 3; ++a) sample.reference[size_t(a)] = double(tip.X[a]);
         const Vec<D, Real> X = particles_.template buffer<Vec<D, Real>>(field::reference_position)[size_t(tip.index)];
         const Vec<D, Real> u = particles_.template buffer<Vec<D, Real>>(field::displacement)[size_t(tip.index)];
         for (int a = 0; a < D; ++a) sample.tip[size_t(a)] = double(X.v[a]) + double(u.v[a]);
