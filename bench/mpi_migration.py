@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""The cost of ULSPH migration in distributed runs (issue 25).
+"""The cost of distributed runs whose particles move through the cuts (issue 25).
 
-`mpiexec -n R mfsd run` of ULSPH scenes with one thread per rank, against
-the single process with one thread: the oscillating plate (little motion
-across the cut), the J2 Taylor bar on a wall (H/dp 20) and the 3100 m/s
-disc through a plate (contact between bodies), whose particles cross the
-cuts. Reports particle-steps/s (median of --repeats),
+`mpiexec -n R mfsd run` with one thread per rank, against the single process
+with one thread. ULSPH: the oscillating plate (little motion across the
+cut), the J2 Taylor bar on a wall (H/dp 20) and the 3100 m/s disc through a
+plate (contact between bodies), whose particles cross the cuts. RKPM: the
+plate in its slot, the 3-D J2 Taylor bar to 20 us and Dienes' shear (nodes
+migrate; the operators are refreshed). TLSPH with phase-field fracture: the
+notched bar (no migration; s and ds/dt refreshed). Reports particle-steps/s (median of --repeats),
 the migrations, rebalances and kilobytes moved (the run's report), and the
 shares of rank 0's step taken by the migrate and halo stages. Needs an MPI
 build (scripts/test.sh --mpi). Ranks beyond the cores share them
@@ -28,12 +30,16 @@ ENV = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALL
            OMPI_MCA_mpi_yield_when_idle="1")
 SCENES = {"ULSPH oscillating plate, to 0.05 s": ("oscillating_plate_ulsph_2d.json", ["solver.end_time=0.05"]),
           "ULSPH J2 Taylor bar, H/dp 20": ("taylor_bar_ulsph_2d.json", []),
-          "ULSPH disc through a plate (contact)": ("projectile_impact_ulsph_2d.json", [])}
+          "ULSPH disc through a plate (contact)": ("projectile_impact_ulsph_2d.json", []),
+          "RKPM plate in its slot, to 0.02 s": ("oscillating_plate_rkpm_2d.json", ["solver.end_time=0.02"]),
+          "RKPM J2 Taylor bar 3-D, to 20 us": ("taylor_bar_rkpm_3d.json", ["solver.end_time=2e-5"]),
+          "RKPM Dienes shear": ("simple_shear_rkpm_2d.json", []),
+          "TLSPH notched bar, phase-field fracture": ("notched_bar_2d.json", [])}
 
 
 def one_run(scene, ranks, out):
     name, sets = scene
-    cmd = [BINARY, "run", os.path.join(ROOT, "configs", name), "-o", out, "--threads", "1", "--set",
+    cmd = [BINARY, "run", scene_path(name), "-o", out, "--threads", "1", "--set",
            "output.vtu=false"]
     for kv in sets:
         cmd += ["--set", kv]
@@ -67,7 +73,7 @@ def main():
     date = datetime.date.today().isoformat()
     base = os.path.join(ROOT, "bench", "results", "mpi_migration-" + date)
     json.dump({"date": date, "cores": os.cpu_count(), "cases": cases}, open(base + ".json", "w"), indent=1)
-    lines = ["# ULSPH migration on one machine (%d cores), %s" % (os.cpu_count(), date), "",
+    lines = ["# Moving particles (ULSPH, RKPM) and phase-field fracture on one machine (%d cores), %s" % (os.cpu_count(), date), "",
              "`python3 bench/mpi_migration.py --repeats %d`; one thread per rank, medians; ranks beyond the "
              "cores share them." % a.repeats, "",
              "| scene | processes | particles | M particle-steps/s | vs 1 process | migrations | rebalances "
@@ -81,6 +87,13 @@ def main():
             100 * c["halo_share"], c["sent_kB_per_step_max"]))
     open(base + ".md", "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+def scene_path(name):
+    for folder in ("configs", os.path.join("tests", "regression", "scenes")):
+        if os.path.exists(os.path.join(ROOT, folder, name)):
+            return os.path.join(ROOT, folder, name)
+    raise SystemExit("no scene " + name)
 
 
 if __name__ == "__main__":
