@@ -19,6 +19,9 @@ struct RunOptions {
   std::string command_line;
   std::string restart;                  // continue from this output or checkpoint folder
   double checkpoint_every_minutes = 0;  // wall-clock checkpoints (0: none)
+  // A language binding steps the run itself (host/driver/run_session.hpp):
+  bool handle_signals = true;  // false: the caller installs InterruptHandling around its steps
+  bool keep_series = false;    // the CSV rows also in memory (RunSession::series)
 };
 
 struct RunResult {
