@@ -20,7 +20,20 @@ mfsd_required_packages() {
   echo "$pkgs"
 }
 
+# The Python module's build and test packages (issue 28; scripts/test.sh
+# --python), from PyPI for the python3 on PATH: nanobind, NumPy, pytest, and matplotlib for the examples' figures.
+mfsd_ensure_python_packages() {
+  [[ ${MFSD_WITH_PYTHON:-0} == 1 ]] || return 0
+  python3 -c "import nanobind, numpy, pytest, matplotlib" 2>/dev/null && return 0
+  mfsd_log "installing Python packages for $(command -v python3): nanobind numpy pytest matplotlib"
+  python3 -m pip install -q nanobind numpy pytest matplotlib || {
+    mfsd_log "could not install them; run: python3 -m pip install nanobind numpy pytest matplotlib"
+    exit 1
+  }
+}
+
 mfsd_ensure_dependencies() {
+  mfsd_ensure_python_packages
   local missing=()
   for p in $(mfsd_required_packages); do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

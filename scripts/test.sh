@@ -4,6 +4,7 @@
 #   scripts/test.sh --all      also the long validation runs (ctest label validate)
 #   scripts/test.sh --gpu      also require the GPU tests to run (MFSD_REQUIRE_GPU=1)
 #   scripts/test.sh --mpi      also the MPI loopback tests on 1, 2, 4 ranks (installs OpenMPI; issue 25)
+#   scripts/test.sh --python   also the Python module and its tests (installs nanobind, NumPy, pytest; issue 28)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 exclude="validate"
@@ -13,7 +14,8 @@ for arg in "$@"; do
     --all) exclude="" ;;
     --gpu) export MFSD_REQUIRE_GPU=1 ;;
     --mpi) export MFSD_WITH_MPI=1; cmake_args+=(-DMFSD_MPI=ON) ;;
-    *) mfsd_log "unknown option $arg (expected --all, --gpu or --mpi)"; exit 2 ;;
+    --python) export MFSD_WITH_PYTHON=1; cmake_args+=(-DMFSD_PYTHON=ON "-DPython_EXECUTABLE=$(command -v python3)") ;;
+    *) mfsd_log "unknown option $arg (expected --all, --gpu, --mpi or --python)"; exit 2 ;;
   esac
 done
 mfsd_ensure_dependencies

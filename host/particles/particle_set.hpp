@@ -8,13 +8,32 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <typeinfo>
 #include <vector>
 
 #include "host/backend/algorithms.hpp"
+#include "host/particles/field_memory.hpp"
 #include "host/particles/state_archive.hpp"
+#include "kernels/core/mat.hpp"
+#include "kernels/core/vec.hpp"
 
 namespace mfsd {
+
+template <class T>
+struct FieldLayout {
+  static constexpr bool plain = std::is_arithmetic<T>::value;
+  static constexpr int components = 1, rows = 0, scalar_bytes = int(sizeof(T));
+  static constexpr char kind = std::is_floating_point<T>::value ? 'f' : std::is_signed<T>::value ? 'i' : 'u';
+};
+template <int N, class S>
+struct FieldLayout<Vec<N, S>> : FieldLayout<S> {
+  static constexpr int components = N, rows = 0;
+};
+template <int N, class S>
+struct FieldLayout<Mat<N, S>> : FieldLayout<S> {
+  static constexpr int components = N * N, rows = N;
+};
 
 struct BodyRange {
   Index begin = 0;
@@ -65,6 +84,11 @@ class ParticleSet {
     for (auto& kv : fields_) r.push_back(kv.first);
     return r;
   }
+
+  // The layout and address of a field's values (FieldMemory).
+  FieldMemory memory(const std::string& name) const { return find(name).memory(name); }
+  // A field's values copied to the host, element after element.
+  std::string bytes(const std::string& name) const { return find(name).save(); }
 
   // Bytes held by all fields (for the memory-per-particle report).
   size_t bytes() const {
@@ -123,6 +147,7 @@ class ParticleSet {
     virtual std::vector<char> pack(const DeviceVector<B, Index>& index) const = 0;
     virtual size_t element_bytes() const = 0;
     virtual void unpack(const DeviceVector<B, Index>& index, const std::vector<char>& bytes) = 0;
+    virtual FieldMemory memory(const std::string& name) = 0;
   };
   template <class T>
   struct Field final : FieldBase {
@@ -137,6 +162,20 @@ class ParticleSet {
     size_t bytes() const override { return data.size() * sizeof(T); }
     size_t element_bytes() const override { return sizeof(T); }
     const std::type_info& type() const override { return typeid(T); }
+    FieldMemory memory(const std::string& name) override {
+      using L = FieldLayout<T>;
+      FieldMemory m;
+      m.name = name;
+      m.data = static_cast<void*>(raw(data));
+      m.count = data.size();
+      m.components = L::components;
+      m.rows = L::rows;
+      m.kind = L::kind;
+      m.scalar_bytes = L::scalar_bytes;
+      m.plain = L::plain && sizeof(T) == size_t(L::components) * size_t(L::scalar_bytes);
+      m.on_device = !std::is_same<B, Cpu>::value;
+      return m;
+    }
     std::string save() const override {
       const std::vector<T> h = to_host<B>(data);
       return std::string(reinterpret_cast<const char*>(h.data()), h.size() * sizeof(T));

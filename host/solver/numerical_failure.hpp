@@ -20,6 +20,10 @@ class NumericalFailure : public std::runtime_error {
         detail_(detail) {}
   long step() const { return step_; }
   long particle_id() const { return particle_id_; }
+  double time() const { return time_; }
+  const std::string& body() const { return body_; }
+  const std::string& field() const { return field_; }
+  const std::string& detail() const { return detail_; }
   // The same failure for the particle's id in another numbering (a part's
   // particle in the whole scene, host/solver/coupled/).
   NumericalFailure renumbered(long particle_id) const {

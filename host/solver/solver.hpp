@@ -12,6 +12,7 @@
 #include "host/backend/stage_timers.hpp"
 #include "host/distributed/ghost_exchange.hpp"
 #include "host/output/snapshot.hpp"
+#include "host/particles/field_memory.hpp"
 #include "host/particles/state_archive.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene.hpp"
@@ -118,6 +119,14 @@ class Solver {
   virtual std::vector<MeasureSample> measures() = 0;  // scene.measure_planes order
   // Per entry of crack_bodies(scene): its crack tip now.
   virtual std::vector<CrackTipSample> crack_tips() { return {}; }
+  // The registered per-particle fields where they lie, in the solver's
+  // particle order (field "id": each particle's index in the scene), the
+  // output observables (von Mises, J, ...) brought up to date first. The
+  // addresses hold while the solver lives (single-process runs keep their
+  // buffers after the set-up); the values change with each step.
+  virtual std::vector<FieldMemory> fields() { return {}; }
+  // One field's values copied to the host (a GPU's fields).
+  virtual std::string field_bytes(const std::string& /*name*/) { return {}; }
   virtual const StageTimers& timers() const = 0;
   virtual void reset_timers() = 0;  // after warm-up steps
   virtual SetupReport setup_report() const = 0;

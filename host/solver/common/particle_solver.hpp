@@ -112,6 +112,17 @@ class ParticleSolver : public Solver {
     return s;
   }
 
+  std::vector<FieldMemory> fields() override {
+    update_observables();
+    std::vector<FieldMemory> out;
+    for (const std::string& name : particles_.field_names()) {
+      FieldMemory m = particles_.memory(name);
+      if (m.plain) out.push_back(m);
+    }
+    return out;
+  }
+  std::string field_bytes(const std::string& name) override { return particles_.bytes(name); }
+
   std::vector<BoundaryForceSample> boundary_forces() override {
     std::vector<BoundaryForceSample> out = conditions_.forces();
     for (const auto& f : contact_.forces()) out.push_back(f);

@@ -1,0 +1,129 @@
+"""mfsd from Python against the CLI and against itself (issue 28)."""
+import csv
+import gc
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import mfsd
+
+PLATE = "oscillating_plate_2d.json"
+SHORT = {"solver.end_time": 0.01, "output.interval": 0.005}
+
+
+def plate(configs, **extra):
+    sets = dict(SHORT)
+    sets.update(extra)
+    return mfsd.Scene.from_file(os.path.join(configs, PLATE), set=sets)
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array([[float(x) for x in r] for r in rows[1:]])
+
+
+def test_run_matches_the_cli_bit_for_bit(configs, out, tmp_path):
+    """The same library: the energies.csv and probes.csv of sim.run() and of
+    `mfsd run` are the same bytes, and sim.energies holds their numbers."""
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    sim.run()
+    assert not sim.running and sim.time == pytest.approx(0.01)
+    binary = os.environ.get("MFSD_BINARY")
+    if not binary:
+        pytest.skip("MFSD_BINARY not set (ctest sets it)")
+    cli = str(tmp_path / "cli")
+    subprocess.run([binary, "run", os.path.join(configs, PLATE), "-q", "--threads", "1", "-o", cli,
+                    "--set", "solver.end_time=0.01", "--set", "output.interval=0.005"], check=True)
+    for name in ("energies.csv", "probes.csv"):
+        assert open(os.path.join(out, name)).read() == open(os.path.join(cli, name)).read(), name
+    columns, rows = read_csv(os.path.join(cli, "energies.csv"))
+    e = sim.energies
+    assert list(e) == columns
+    # the file's rows, at full precision (the CSV prints 10 significant digits)
+    np.testing.assert_allclose(e["kinetic"], rows[:, columns.index("kinetic")], rtol=1e-9)
+
+
+def test_fields_are_zero_copy_read_only_views(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    v = sim.fields["velocity"]
+    assert v.shape == (sim.fields["id"].shape[0], 2) and v.dtype == np.float64
+    assert not v.flags.writeable
+    again = sim.fields["velocity"]
+    assert np.shares_memory(v, again)  # the solver's buffer, not a copy
+    before = v.copy()
+    sim.step(5)
+    assert sim.steps == 5
+    assert not np.array_equal(before, v)  # the view follows the run
+    with pytest.raises(ValueError):
+        v[0, 0] = 1.0
+    ids = sim.fields["id"]
+    assert sorted(ids.tolist()) == list(range(len(ids)))  # each particle once, by its index in the scene
+    sim.finish()
+
+
+def test_an_array_outlives_its_simulation(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    sim.step(2)
+    u = sim.fields["displacement"]
+    expected = u.copy()
+    del sim
+    gc.collect()
+    np.testing.assert_array_equal(u, expected)  # the array keeps the run's memory alive
+    assert float(np.abs(u).sum()) > 0
+
+
+def test_position_is_reference_plus_displacement(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    sim.step(3)
+    x = sim.fields["position"]
+    np.testing.assert_array_equal(x, sim.fields["reference_position"] + sim.fields["displacement"])
+    assert "velocity" in sim.fields and "position" in sim.fields.keys()
+    with pytest.raises(KeyError, match="no particle field 'speed'"):
+        sim.fields["speed"]
+
+
+def test_run_with_a_callback_every_interval(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    seen = []
+    sim.run(until=0.008, every=0.002, callback=lambda s: seen.append((s.time, float(np.abs(s.fields["velocity"]).max()))))
+    times = [t for t, _ in seen]
+    assert len(seen) == 4 and all(b > a for a, b in zip(times, times[1:]))
+    for k, t in enumerate(times):  # at the first step at or past each multiple
+        assert t >= 0.002 * (k + 1) - 1e-12 and t < 0.002 * (k + 1) + 1e-4
+    assert sim.running  # until < end_time
+    sim.run()
+    assert not sim.running
+
+
+def test_step_count_and_end(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    assert sim.step(3) == 3 and sim.steps == 3
+    taken = sim.step(10**6)  # stops at the end time
+    assert not sim.running and sim.time == pytest.approx(0.01) and sim.steps == 3 + taken
+    assert sim.step(1) == 0
+    result = sim.finish()
+    assert result["exit_code"] == 0
+    run = json.load(open(os.path.join(out, "run.json")))
+    assert run["status"] == "completed" and run["steps"] == sim.steps
+
+
+def test_snapshot_and_checkpoint_continue_with_the_cli(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    sim.step(4)
+    sim.write_snapshot()
+    folder = sim.checkpoint()
+    assert os.path.isdir(folder)
+    pvd = open(os.path.join(out, "snapshots.pvd")).read()
+    assert pvd.count("<DataSet") == 2  # t = 0 and the one asked for
+    sim.finish()
+
+
+def test_timing_report(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    sim.step(5)
+    t = sim.timing
+    assert t["steps"] == 5 and "force" in t["stages"] and t["stage_seconds"] > 0
