@@ -12,13 +12,13 @@ periods = []
 for nu in ([0.25, 0.35] if coarse else [0.22, 0.25, 0.3, 0.35, 0.4, 0.45]):
     scene = mfsd.Scene.from_file(scene_file, set={"bodies.plate.material.poisson_ratio": nu,
                                                   "constants.H_over_dp": 6 if coarse else 20,
-                                                  "solver.end_time": 0.25, "output.vtu": False})
+                                                  "solver.end_time": 0.3 if coarse else 0.62, "output.vtu": False})
     sim = mfsd.Simulation(scene, threads=2, output_dir="out/examples/plate_nu_%g" % nu)
     sim.run()
     t, v = sim.probes["time"], sim.probes["tip.velocity.y"]
     k = np.nonzero(np.sign(v[1:]) * np.sign(v[:-1]) < 0)[0]
     crossing = t[k] - v[k] * (t[k + 1] - t[k]) / (v[k + 1] - v[k])
-    periods.append((nu, 2.0 * (crossing[1] - crossing[0])))
+    periods.append((nu, 2.0 * (crossing[-1] - crossing[0]) / (len(crossing) - 1)))
     print("nu = %.2f: T = %.5f s" % periods[-1])
 
 try:

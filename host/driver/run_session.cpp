@@ -18,6 +18,7 @@
 
 #include "host/distributed/distribution.hpp"
 #include "host/driver/interrupt.hpp"
+#include "host/driver/observers.hpp"
 #include "host/driver/output_rows.hpp"
 #include "host/driver/progress.hpp"
 #include "host/driver/run_checkpoint.hpp"
@@ -79,8 +80,8 @@ double next_multiple(double next, double interval, double t) {
 
 // Outputs of a previous run in the same folder would mix with this one's.
 void remove_previous_outputs(const std::string& dir) {
-  for (const char* f : {"run.json", "timing.json", "probes.csv", "energies.csv", "boundary_forces.csv", "snapshots.pvd",
-                        "rigid_bodies.pvd"})
+  for (const char* f : {"run.json", "timing.json", "probes.csv", "observers.csv", "energies.csv", "boundary_forces.csv",
+                        "snapshots.pvd", "rigid_bodies.pvd"})
     fs::remove(fs::path(dir) / f);
   fs::remove_all(fs::path(dir) / "snapshots");
   for (const char* c : {"checkpoint", "checkpoint.previous", "checkpoint.new"}) fs::remove_all(fs::path(dir) / c);
@@ -121,7 +122,8 @@ struct RunSession::Impl {
   RunStatus status;
   SetupReport setup;
   std::vector<std::pair<std::string, CsvWriter*>> csv_files;
-  std::unique_ptr<CsvWriter> probes_csv, energies_csv, forces_csv;
+  std::unique_ptr<CsvWriter> probes_csv, energies_csv, forces_csv, observers_csv;
+  std::unique_ptr<Observers> observers;
   std::vector<std::unique_ptr<CsvWriter>> measure_csv, crack_csv;
   std::unique_ptr<PvdIndex> pvd, rigid_pvd;
   std::vector<RigidBodyMotion> rigid;
@@ -270,6 +272,8 @@ void RunSession::Impl::setup_run() {
     status.start_steps = solver->steps();
     for (const auto& w : restart->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
+  // The observers' fields are the solver's: checked now, before any file.
+  if (!scene.observers.empty()) observers = std::make_unique<Observers>(scene, *solver);
   status.setup_seconds = seconds_since(t_start);
   setup = solver->setup_report();
   if (root) write_run_json(dir, doc, options, setup, status);
@@ -290,6 +294,7 @@ void RunSession::Impl::setup_run() {
   }
 
   probes_csv = open_csv("probes.csv", probe_columns(scene));
+  if (observers) observers_csv = open_csv("observers.csv", observers->columns());
   energies_csv = open_csv("energies.csv", energy_columns(scene));
   for (auto& mp : scene.measure_planes)
     measure_csv.push_back(open_csv("measure_" + mp.name + ".csv", measure_columns(scene)));
@@ -338,6 +343,10 @@ void RunSession::Impl::write_outputs(bool snapshot) {
   if (!scene.probes.empty()) {
     const auto p = solver->probes();
     if (root) row(probes_csv, probe_row(scene, solver->time(), p));
+  }
+  if (observers) {
+    const std::vector<double> r = observers->row(*solver, solver->time());
+    if (root) row(observers_csv, r);
   }
   if (with_forces) {
     const auto f = solver->boundary_forces();

@@ -209,6 +209,23 @@ struct ProbeSpec {
   std::vector<std::string> fields;  // position, displacement, velocity, von_mises, J
 };
 
+// An observer (issue 28; SPHinXsys's observers): points, or a line of
+// evenly spaced points, where registered particle fields are interpolated
+// with a kernel average over the particles within `radius`, Shepard-
+// normalised or with the linear correction that reproduces linear fields
+// (docs/scene-reference.md, "observers"); frozen: the particles and weights
+// of the initial configuration, else those of the current one at each row.
+struct ObserverSpec {
+  enum class Interpolation { shepard, linear };
+  std::string name;
+  std::string body;  // "" = every body
+  std::vector<Point3> points;
+  std::vector<std::string> fields;  // registered field names, or "position"
+  double radius = 0;                // 0: the body's kernel support 2h (the largest over the bodies)
+  bool freeze = false;
+  Interpolation interpolation = Interpolation::shepard;
+};
+
 // A measure plane (seed 001 Fig. 7): the particles within thickness / 2 of a
 // planar quadrilateral (3-D, 4 corners) or a segment (2-D, 2 ends) in the
 // reference configuration; their mean displacement and total force are
@@ -319,6 +336,7 @@ struct Scene {
   std::vector<WallSpec> walls;
   ContactSpec contact;
   std::vector<ProbeSpec> probes;
+  std::vector<ObserverSpec> observers;
   std::vector<MeasurePlaneSpec> measure_planes;
   OutputSpec output;
   Bounds bounds;  // particles leaving it stop the run

@@ -774,6 +774,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
                        "a rigid body whose name no clamp, condition, load or wall has (its reaction is a column of "
                        "boundary_forces.csv)");
   read_measure_planes(root, scene, names);
+  read_observers(root, scene, names);
 
   auto probes = root.array("probes", false);
   std::set<std::string> probe_names;

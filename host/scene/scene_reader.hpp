@@ -60,6 +60,8 @@ FractureSpec read_fracture(JsonNode node, const MaterialSpec& material, double s
 
 // measure_planes[] into scene.measure_planes (measure_plane_reader.cpp).
 void read_measure_planes(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
+// observers[] (observer_reader.cpp).
+void read_observers(JsonNode& root, Scene& scene, const std::set<std::string>& body_names);
 
 // A name that becomes part of a file or folder name (`used_in`, e.g.
 // "measure_<name>.csv"): letters, digits, '_', '-' and '.', at most 200

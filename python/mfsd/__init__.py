@@ -304,6 +304,13 @@ class Simulation:
         return _columns(s["probes.csv"]) if "probes.csv" in s and len(s["probes.csv"][0]) > 1 else {}
 
     @property
+    def observers(self):
+        """observers.csv so far: the scene's observers' interpolated fields
+        (an empty dict for a scene without observers)."""
+        s = self._native.series()
+        return _columns(s["observers.csv"]) if "observers.csv" in s else {}
+
+    @property
     def timing(self):
         """Seconds spent in each stage of the steps so far, with the steps
         and the particle-steps per second of those stages."""
