@@ -557,9 +557,34 @@ const RunResult& RunSession::finish() {
 void RunSession::write_snapshot() {
   if (!impl_->finished) impl_->write_outputs(true);
 }
-std::string RunSession::write_checkpoint() {
-  impl_->write_checkpoint_now();
-  return impl_->status.checkpoint;
+std::string RunSession::write_checkpoint(const std::string& folder) {
+  Impl& m = *impl_;
+  if (folder.empty() || fs::weakly_canonical(folder) == fs::weakly_canonical(m.dir)) {
+    m.write_checkpoint_now();
+    return m.status.checkpoint;
+  }
+  if (m.dist) throw UsageError("a checkpoint in another folder is for single-process runs");
+  prepare_output_dir(folder);
+  if (!fs::is_empty(folder))
+    throw SceneError("checkpoint folder '" + folder + "'", "a folder that holds files",
+                     "an empty or new folder (the run's outputs so far are copied into it)");
+  // The outputs so far, as the checkpoint's positions will name them.
+  for (const auto& [name, writer] : m.csv_files) {
+    (void)writer;
+    fs::copy_file(fs::path(m.dir) / name, fs::path(folder) / name);
+  }
+  for (const char* index : {"snapshots.pvd", "rigid_bodies.pvd"})
+    if (fs::exists(fs::path(m.dir) / index)) fs::copy_file(fs::path(m.dir) / index, fs::path(folder) / index);
+  fs::copy(fs::path(m.dir) / "snapshots", fs::path(folder) / "snapshots", fs::copy_options::recursive);
+  m.at.snapshots = m.pvd->entries();
+  m.at.rigid_snapshots = m.rigid_pvd->entries();
+  m.at.csv_bytes.clear();
+  for (auto& [name, w] : m.csv_files) m.at.csv_bytes[name] = w->bytes();
+  StateArchive archive;
+  m.solver->save_state(archive);
+  const Json meta = checkpoint_meta(m.doc, m.options, m.solver->time(), m.solver->steps(), m.at);
+  mfsd::write_checkpoint(checkpoint_folder(folder), meta.dump(), archive);
+  return checkpoint_folder(folder);
 }
 const std::map<std::string, RunSession::Series>& RunSession::series() const { return impl_->series; }
 const std::optional<NumericalFailure>& RunSession::failure() const { return impl_->failure; }

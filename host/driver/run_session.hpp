@@ -41,8 +41,11 @@ class RunSession {
   // output times (the Python module's write_snapshot()).
   void write_snapshot();
   // A checkpoint of the current state in the output folder's checkpoint/
-  // (what --restart continues); returns that folder.
-  std::string write_checkpoint();
+  // (what --restart continues); returns that folder. With `folder`, a copy
+  // of the outputs so far (the CSV series, the PVD indices, the snapshots)
+  // goes to that folder with the checkpoint in its checkpoint/: `mfsd run
+  // --restart FOLDER` continues the run there, a branch of this one.
+  std::string write_checkpoint(const std::string& folder = "");
 
   // One CSV series (its file name: "energies.csv", "probes.csv", ...) as
   // written since this session began, with RunOptions::keep_series.

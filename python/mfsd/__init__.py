@@ -321,10 +321,15 @@ class Simulation:
         """A snapshot and the series' rows of the current time, now."""
         self._native.write_snapshot()
 
-    def checkpoint(self):
-        """A checkpoint of the current state in the output folder (what
-        `mfsd run --restart` continues); returns its folder."""
-        return self._native.checkpoint()
+    def checkpoint(self, dir=None):
+        """A checkpoint of the current state; returns its folder. Without
+        `dir` in the run's output folder (`mfsd run --restart OUTPUT`
+        continues it); with `dir` (new or empty) a copy of the outputs so far
+        and the checkpoint go there, and `mfsd run --restart dir` continues
+        the run in that folder, a branch of this one."""
+        if dir is not None and not isinstance(dir, (str, os.PathLike)):
+            raise TypeError("dir: expected a folder name, got %r" % (dir,))
+        return _native(self._native.checkpoint, os.fspath(dir) if dir is not None else "")
 
     def __repr__(self):
         return "mfsd.Simulation(%r, t = %g s, step %d%s)" % (self.scene.name, self.time, self.steps,

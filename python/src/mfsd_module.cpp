@@ -161,7 +161,7 @@ class PySession {
   }
 
   void write_snapshot() { session_->write_snapshot(); }
-  std::string checkpoint() { return session_->write_checkpoint(); }
+  std::string checkpoint(const std::string& folder) { return session_->write_checkpoint(folder); }
 
   // Ends the run: (exit code, state message); the failure's fields when a
   // numerical failure stopped it.
@@ -242,6 +242,6 @@ NB_MODULE(_mfsd, m) {
       .def("series", &PySession::series)
       .def("timing", &PySession::timing)
       .def("write_snapshot", &PySession::write_snapshot)
-      .def("checkpoint", &PySession::checkpoint)
+      .def("checkpoint", &PySession::checkpoint, "folder"_a)
       .def("finish", &PySession::finish);
 }

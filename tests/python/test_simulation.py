@@ -122,6 +122,29 @@ def test_snapshot_and_checkpoint_continue_with_the_cli(configs, out):
     sim.finish()
 
 
+def test_checkpoint_in_a_folder_continues_with_the_cli(configs, out, tmp_path):
+    """sim.checkpoint(dir) copies the outputs so far beside the checkpoint:
+    `mfsd run --restart dir` ends where the uninterrupted run ends, with the
+    same energies.csv and probes.csv bytes."""
+    binary = os.environ.get("MFSD_BINARY")
+    if not binary:
+        pytest.skip("MFSD_BINARY not set (ctest sets it)")
+    whole = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    whole.run()
+    branch = str(tmp_path / "branch")
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=str(tmp_path / "cut"))
+    sim.step(7)
+    assert sim.checkpoint(branch) == os.path.join(branch, "checkpoint")
+    sim.finish()
+    subprocess.run([binary, "run", os.path.join(configs, PLATE), "-q", "--threads", "1", "--set",
+                    "solver.end_time=0.01", "--set", "output.interval=0.005", "--restart", branch], check=True)
+    for name in ("energies.csv", "probes.csv", "snapshots.pvd"):
+        assert open(os.path.join(branch, name)).read() == open(os.path.join(out, name)).read(), name
+    with pytest.raises(mfsd.SceneError, match="empty"):
+        sim2 = mfsd.Simulation(plate(configs), threads=1, output_dir=str(tmp_path / "again"))
+        sim2.checkpoint(branch)
+
+
 def test_timing_report(configs, out):
     sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
     sim.step(5)
