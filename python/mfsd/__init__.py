@@ -151,6 +151,9 @@ class _Fields:
         if not isinstance(name, str):
             raise TypeError("field names are strings, got %r" % (name,))
         native = self._sim._native
+        if not native.field_names():
+            raise NotImplementedError("sim.fields: a scene of several methods does not show its solvers' fields "
+                                      "yet (docs/python.md); sim.series and the snapshots have its results")
         if name == "position":
             return native.field("reference_position", native) + native.field("displacement", native)
         try:

@@ -64,3 +64,14 @@ def test_a_failed_run_raises_numerical_failure(configs, tmp_path):
     f = e.value
     assert f.step > 0 and f.particle >= 0 and f.body == "plate" and f.field
     assert json.load(open(os.path.join(str(tmp_path / "run"), "run.json")))["status"] == "failed"
+
+
+def test_fields_of_a_scene_of_several_methods_are_refused_with_a_reason(configs, tmp_path):
+    scene = mfsd.Scene.from_file(os.path.join(configs, "colliding_rings_mixed_2d.json"),
+                                 set={"solver.end_time": 1e-4})
+    sim = mfsd.Simulation(scene, threads=1, output_dir=str(tmp_path / "run"))
+    sim.step(1)
+    with pytest.raises(NotImplementedError, match="several methods"):
+        sim.fields["velocity"]
+    assert len(sim.energies["time"]) == 1  # the series are there
+    sim.finish()
