@@ -161,8 +161,40 @@ class _Fields:
         except KeyError:
             raise KeyError("no particle field %r; this run has: %s" % (name, ", ".join(self.keys()))) from None
 
+    def dlpack(self, name):
+        """The field where it lies (the GPU's memory with backend="cuda"),
+        without a copy, for DLPack consumers:
+        np.from_dlpack(sim.fields.dlpack("velocity")) on the CPU,
+        torch.from_dlpack(...) or cupy.from_dlpack(...) on either. Writing
+        through such an array changes the run: leave it read-only."""
+        if not isinstance(name, str):
+            raise TypeError("field names are strings, got %r" % (name,))
+        native = self._sim._native
+        if not native.field_names():
+            raise NotImplementedError("sim.fields: a scene of several methods does not show its solvers' fields yet")
+        try:
+            native.dlpack(name, native)  # the name checked now
+            return _DLPackField(native, name)
+        except KeyError:
+            raise KeyError("no particle field %r; this run has: %s" % (name, ", ".join(self.keys()))) from None
+
     def __repr__(self):
         return "mfsd fields: " + ", ".join(self.keys())
+
+
+class _DLPackField:
+    """A field for DLPack consumers: each __dlpack__ call hands out a new
+    capsule over the same memory (a capsule is consumed once)."""
+
+    def __init__(self, native, name):
+        self._native, self._name = native, name
+
+    def __dlpack__(self, stream=None, **kwargs):
+        return self._native.dlpack(self._name, self._native)[0]
+
+    def __dlpack_device__(self):
+        _, device, device_id = self._native.dlpack(self._name, self._native)
+        return (device, device_id)
 
 
 def _columns(series):

@@ -13,6 +13,9 @@
 #include <memory>
 #include <string>
 #include <vector>
+#ifdef MFSD_HAVE_CUDA_RUNTIME
+#include <cuda_runtime.h>
+#endif
 
 #include "host/backend/backend.hpp"
 #include "host/cli/check_summary.hpp"
@@ -146,6 +149,34 @@ class PySession {
     throw nb::key_error(("no particle field '" + name + "' (sim.fields lists them)").c_str());
   }
 
+  // A field where it lies, CPU or GPU, without a copy: (a DLPack capsule
+  // that keeps this session alive through `owner`, the DLPack device type,
+  // the device id). The package wraps it in __dlpack__ / __dlpack_device__.
+  nb::object dlpack(const std::string& name, nb::handle owner) {
+    for (const FieldMemory& m : session_->solver().fields()) {
+      if (m.name != name) continue;
+      std::vector<size_t> shape{m.count};
+      if (m.rows > 0) {
+        shape.push_back(size_t(m.rows));
+        shape.push_back(size_t(m.rows));
+      } else if (m.components > 1) {
+        shape.push_back(size_t(m.components));
+      }
+      const nb::dlpack::dtype type{uint8_t(m.kind == 'f'   ? nb::dlpack::dtype_code::Float
+                                           : m.kind == 'i' ? nb::dlpack::dtype_code::Int
+                                                           : nb::dlpack::dtype_code::UInt),
+                                   uint8_t(8 * m.scalar_bytes), 1};
+      const int device = m.on_device ? nb::device::cuda::value : nb::device::cpu::value;
+      int device_id = 0;
+#ifdef MFSD_HAVE_CUDA_RUNTIME
+      if (m.on_device) cudaGetDevice(&device_id);
+#endif
+      nb::ndarray<nb::ro> view(m.data, shape.size(), shape.data(), owner, nullptr, type, device, device_id);
+      return nb::make_tuple(view.cast(), device, device_id);  // a DLPack capsule, and where it lies
+    }
+    throw nb::key_error(("no particle field '" + name + "' (sim.fields lists them)").c_str());
+  }
+
   std::map<std::string, std::pair<std::vector<std::string>, std::vector<std::vector<double>>>> series() const {
     std::map<std::string, std::pair<std::vector<std::string>, std::vector<std::vector<double>>>> out;
     for (const auto& [file, s] : session_->series()) out[file] = {s.columns, s.rows};
@@ -239,6 +270,7 @@ NB_MODULE(_mfsd, m) {
       .def_prop_ro("output_dir", &PySession::output_dir)
       .def("field_names", &PySession::field_names)
       .def("field", &PySession::field, "name"_a, "owner"_a)
+      .def("dlpack", &PySession::dlpack, "name"_a, "owner"_a)
       .def("series", &PySession::series)
       .def("timing", &PySession::timing)
       .def("write_snapshot", &PySession::write_snapshot)

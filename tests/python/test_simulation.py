@@ -150,3 +150,14 @@ def test_timing_report(configs, out):
     sim.step(5)
     t = sim.timing
     assert t["steps"] == 5 and "force" in t["stages"] and t["stage_seconds"] > 0
+
+
+def test_dlpack_view_shares_the_solver_memory(configs, out):
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    d = np.from_dlpack(sim.fields.dlpack("velocity"))
+    assert np.shares_memory(d, sim.fields["velocity"]) and d.shape == sim.fields["velocity"].shape
+    before = d.copy()
+    sim.step(3)
+    assert not np.array_equal(before, d)
+    assert sim.fields.dlpack("velocity").__dlpack_device__()[0] == 1  # kDLCPU
+    sim.finish()
