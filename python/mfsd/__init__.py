@@ -147,19 +147,26 @@ class _Fields:
     def __contains__(self, name):
         return name in self.keys()
 
-    def __getitem__(self, name):
+    def _native_for(self, name):
         if not isinstance(name, str):
             raise TypeError("field names are strings, got %r" % (name,))
         native = self._sim._native
         if not native.field_names():
             raise NotImplementedError("sim.fields: a scene of several methods does not show its solvers' fields "
                                       "yet (docs/python.md); sim.series and the snapshots have its results")
+        return native
+
+    def _unknown(self, name):
+        return KeyError("no particle field %r; this run has: %s" % (name, ", ".join(self.keys())))
+
+    def __getitem__(self, name):
+        native = self._native_for(name)
         if name == "position":
             return native.field("reference_position", native) + native.field("displacement", native)
         try:
             return native.field(name, native)
         except KeyError:
-            raise KeyError("no particle field %r; this run has: %s" % (name, ", ".join(self.keys()))) from None
+            raise self._unknown(name) from None
 
     def dlpack(self, name):
         """The field where it lies (the GPU's memory with backend="cuda"),
@@ -167,16 +174,12 @@ class _Fields:
         np.from_dlpack(sim.fields.dlpack("velocity")) on the CPU,
         torch.from_dlpack(...) or cupy.from_dlpack(...) on either. Writing
         through such an array changes the run: leave it read-only."""
-        if not isinstance(name, str):
-            raise TypeError("field names are strings, got %r" % (name,))
-        native = self._sim._native
-        if not native.field_names():
-            raise NotImplementedError("sim.fields: a scene of several methods does not show its solvers' fields yet")
+        native = self._native_for(name)
         try:
             native.dlpack(name, native)  # the name checked now
             return _DLPackField(native, name)
         except KeyError:
-            raise KeyError("no particle field %r; this run has: %s" % (name, ", ".join(self.keys()))) from None
+            raise self._unknown(name) from None
 
     def __repr__(self):
         return "mfsd fields: " + ", ".join(self.keys())

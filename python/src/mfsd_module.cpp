@@ -123,58 +123,30 @@ class PySession {
   // A field as an array: on the CPU a read-only view of the solver's own
   // buffer that keeps this session alive (`owner`); from a GPU a copy.
   nb::object field(const std::string& name, nb::handle owner) {
-    for (const FieldMemory& m : session_->solver().fields()) {
-      if (m.name != name) continue;
-      std::vector<size_t> shape{m.count};
-      if (m.rows > 0) {
-        shape.push_back(size_t(m.rows));
-        shape.push_back(size_t(m.rows));
-      } else if (m.components > 1) {
-        shape.push_back(size_t(m.components));
-      }
-      const nb::dlpack::dtype type{uint8_t(m.kind == 'f'   ? nb::dlpack::dtype_code::Float
-                                           : m.kind == 'i' ? nb::dlpack::dtype_code::Int
-                                                           : nb::dlpack::dtype_code::UInt),
-                                   uint8_t(8 * m.scalar_bytes), 1};
-      if (!m.on_device) {
-        nb::ndarray<nb::numpy, nb::ro> view(m.data, shape.size(), shape.data(), owner, nullptr, type);
-        return view.cast();
-      }
-      // A copy on the host, owned by a capsule.
-      auto* bytes = new std::string(session_->solver().field_bytes(name));
-      nb::capsule free(bytes, [](void* p) noexcept { delete static_cast<std::string*>(p); });
-      nb::ndarray<nb::numpy> copy(bytes->data(), shape.size(), shape.data(), free, nullptr, type);
-      return copy.cast();
+    const Layout l = layout(name);
+    if (!l.memory.on_device) {
+      nb::ndarray<nb::numpy, nb::ro> view(l.memory.data, l.shape.size(), l.shape.data(), owner, nullptr, l.type);
+      return view.cast();
     }
-    throw nb::key_error(("no particle field '" + name + "' (sim.fields lists them)").c_str());
+    // A copy on the host, owned by a capsule.
+    auto* bytes = new std::string(session_->solver().field_bytes(name));
+    nb::capsule free(bytes, [](void* p) noexcept { delete static_cast<std::string*>(p); });
+    nb::ndarray<nb::numpy> copy(bytes->data(), l.shape.size(), l.shape.data(), free, nullptr, l.type);
+    return copy.cast();
   }
 
   // A field where it lies, CPU or GPU, without a copy: (a DLPack capsule
   // that keeps this session alive through `owner`, the DLPack device type,
   // the device id). The package wraps it in __dlpack__ / __dlpack_device__.
   nb::object dlpack(const std::string& name, nb::handle owner) {
-    for (const FieldMemory& m : session_->solver().fields()) {
-      if (m.name != name) continue;
-      std::vector<size_t> shape{m.count};
-      if (m.rows > 0) {
-        shape.push_back(size_t(m.rows));
-        shape.push_back(size_t(m.rows));
-      } else if (m.components > 1) {
-        shape.push_back(size_t(m.components));
-      }
-      const nb::dlpack::dtype type{uint8_t(m.kind == 'f'   ? nb::dlpack::dtype_code::Float
-                                           : m.kind == 'i' ? nb::dlpack::dtype_code::Int
-                                                           : nb::dlpack::dtype_code::UInt),
-                                   uint8_t(8 * m.scalar_bytes), 1};
-      const int device = m.on_device ? nb::device::cuda::value : nb::device::cpu::value;
-      int device_id = 0;
+    const Layout l = layout(name);
+    const int device = l.memory.on_device ? nb::device::cuda::value : nb::device::cpu::value;
+    int device_id = 0;
 #ifdef MFSD_HAVE_CUDA_RUNTIME
-      if (m.on_device) cudaGetDevice(&device_id);
+    if (l.memory.on_device) cudaGetDevice(&device_id);
 #endif
-      nb::ndarray<nb::ro> view(m.data, shape.size(), shape.data(), owner, nullptr, type, device, device_id);
-      return nb::make_tuple(view.cast(), device, device_id);  // a DLPack capsule, and where it lies
-    }
-    throw nb::key_error(("no particle field '" + name + "' (sim.fields lists them)").c_str());
+    nb::ndarray<nb::ro> view(l.memory.data, l.shape.size(), l.shape.data(), owner, nullptr, l.type, device, device_id);
+    return nb::make_tuple(view.cast(), device, device_id);  // a DLPack capsule, and where it lies
   }
 
   std::map<std::string, std::pair<std::vector<std::string>, std::vector<std::vector<double>>>> series() const {
@@ -218,6 +190,31 @@ class PySession {
   }
 
  private:
+  // A field's memory and its array shape ((n), (n, d) or (n, d, d)) and type.
+  struct Layout {
+    FieldMemory memory;
+    std::vector<size_t> shape;
+    nb::dlpack::dtype type;
+  };
+  Layout layout(const std::string& name) {
+    for (const FieldMemory& m : session_->solver().fields()) {
+      if (m.name != name) continue;
+      Layout l{m, {m.count}, {}};
+      if (m.rows > 0) {
+        l.shape.push_back(size_t(m.rows));
+        l.shape.push_back(size_t(m.rows));
+      } else if (m.components > 1) {
+        l.shape.push_back(size_t(m.components));
+      }
+      l.type = nb::dlpack::dtype{uint8_t(m.kind == 'f'   ? nb::dlpack::dtype_code::Float
+                                         : m.kind == 'i' ? nb::dlpack::dtype_code::Int
+                                                         : nb::dlpack::dtype_code::UInt),
+                                 uint8_t(8 * m.scalar_bytes), 1};
+      return l;
+    }
+    throw nb::key_error(("no particle field '" + name + "' (sim.fields lists them)").c_str());
+  }
+
   std::unique_ptr<RunSession> session_;
 };
 
