@@ -5,7 +5,11 @@ twisting-column scenes (one thread each, double) and prints the largest
 relative difference of every probe column and of the final total energy.
 Usage: bench/compare_runs.py OLD_MFSD NEW_MFSD [--threads N] [--old-args "ARGS"] [--new-args "ARGS"]
 (the same binary twice with different arguments compares run options,
-e.g. --new-args "--pair-loop half")"""
+e.g. --new-args "--pair-loop half").
+With --all-scenes [--max-steps N] it runs every shipped scene (configs/*.json)
+for N steps (default 300) instead and compares every CSV file of the two runs
+byte for byte: a change that must not change results (a refactoring, a build
+option) prints "identical" for each scene."""
 import argparse
 import shlex
 import csv
@@ -37,6 +41,35 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+def all_scenes(args):
+    """Every configs/*.json for --max-steps steps; every CSV compared byte for byte."""
+    scenes = sorted(f for f in os.listdir(os.path.join(ROOT, "configs")) if f.endswith(".json"))
+    differ = []
+    for scene in scenes:
+        outs = []
+        for tag, binary, more in (("old", args.old, args.old_args), ("new", args.new, args.new_args)):
+            out = os.path.join(ROOT, "out", "compare_all", f"{scene[:-5]}_{tag}")
+            cmd = [binary, "run", os.path.join(ROOT, "configs", scene), "-o", out, "-q", "--threads",
+                   str(args.threads), "--max-steps", str(args.max_steps)] + shlex.split(more)
+            subprocess.run(cmd, check=True)
+            outs.append(out)
+        csvs = sorted(f for f in os.listdir(outs[0]) if f.endswith(".csv"))
+        if csvs != sorted(f for f in os.listdir(outs[1]) if f.endswith(".csv")):
+            print(f"{scene}: the runs wrote different CSV files")
+            differ.append(scene)
+            continue
+        changed = [f for f in csvs
+                   if open(os.path.join(outs[0], f), "rb").read() != open(os.path.join(outs[1], f), "rb").read()]
+        rows_n = sum(1 for _ in open(os.path.join(outs[0], "energies.csv"))) - 1
+        print(f"{scene}: {args.max_steps} steps, {len(csvs)} CSV files ({rows_n} energy rows): "
+              + ("identical" if not changed else "DIFFERENT in " + ", ".join(changed)), flush=True)
+        if changed:
+            differ.append(scene)
+    print(f"{len(scenes) - len(differ)} of {len(scenes)} scenes identical" +
+          (f"; different: {', '.join(differ)}" if differ else ""))
+    return 1 if differ else 0
+
+
 def main():
     ap = argparse.ArgumentParser(usage=__doc__)
     ap.add_argument("old")
@@ -44,7 +77,11 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--old-args", default="")
     ap.add_argument("--new-args", default="")
+    ap.add_argument("--all-scenes", action="store_true")
+    ap.add_argument("--max-steps", type=int, default=300)
     args = ap.parse_args()
+    if args.all_scenes:
+        sys.exit(all_scenes(args))
     worst_all = 0.0
     for name, scene, sets, extra in CASES:
         outs = []

@@ -539,6 +539,8 @@ def main():
     ap.add_argument("--seed", default="1", help="seed of the case list (default 1)")
     ap.add_argument("--timeout", type=float, default=30, help="seconds one mfsd process may take (default 30)")
     ap.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1), help="cases in parallel (default 2)")
+    ap.add_argument("--min-cases", type=int, default=0,
+                    help="fail when fewer cases than this ran (the time limit cut the rest)")
     ap.add_argument("--keep", help="copy failing cases (scene, --set arguments, stderr) into this folder")
     ap.add_argument("--only", type=int, action="append", help="run only case K (repeatable)")
     ap.add_argument("--list", action="store_true", help="print the cases' mutations and exit")
@@ -629,6 +631,10 @@ def main():
               (os.path.relpath(os.path.abspath(__file__)), args.seed, c.index, binary))
         print("  stderr: " + r["stderr_tail"].strip().replace("\n", " | ")[-200:])
     print("fuzz: %s" % ("%d failure(s)" % len(failures) if failures else "all cases passed"))
+    if len(results) < args.min_cases:
+        print("fuzz: only %d case(s) ran before the time limit, fewer than --min-cases %d: a fuzz that "
+              "tries little passes without meaning it" % (len(results), args.min_cases))
+        return 1
     return 1 if failures else 0
 
 

@@ -14,11 +14,17 @@ for arg in "$@"; do
     --all) exclude="" ;;
     --gpu) export MFSD_REQUIRE_GPU=1 ;;
     --mpi) export MFSD_WITH_MPI=1; cmake_args+=(-DMFSD_MPI=ON) ;;
-    --python) export MFSD_WITH_PYTHON=1; cmake_args+=(-DMFSD_PYTHON=ON "-DPython_EXECUTABLE=$(command -v python3)") ;;
+    --python) export MFSD_WITH_PYTHON=1; cmake_args+=(-DMFSD_PYTHON=ON) ;;
     *) mfsd_log "unknown option $arg (expected --all, --gpu, --mpi or --python)"; exit 2 ;;
   esac
 done
 mfsd_ensure_dependencies
+# The python3 with the module's packages (a virtual environment where the
+# system's refuses pip; scripts/common.sh).
+[[ ${MFSD_WITH_PYTHON:-0} == 1 ]] && cmake_args+=("-DPython_EXECUTABLE=$MFSD_PYTHON_EXE")
+# Every backend nvcc can build (a build folder that scripts/run.sh set up
+# without CUDA gains it here; the g++ objects are reused).
+cmake_args+=("-DMFSD_CUDA=${MFSD_CUDA:-AUTO}")
 start=$(date +%s)
 mfsd_build "${cmake_args[@]}"
 mfsd_log "build took $(( $(date +%s) - start )) s"

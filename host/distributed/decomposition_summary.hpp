@@ -10,11 +10,6 @@
 
 namespace mfsd::distributed {
 
-// The radius within which a particle's partners lie: per body 2h (SPH
-// kernels) or, for RKPM, (a~ reach + cell half-diagonal + skin) dp; the
-// largest over the bodies.
-double halo_radius(const Scene& scene);
-
 std::string decomposition_summary(const SceneDocument& doc, const InitialParticles& particles, int ranks);
 
 }  // namespace mfsd::distributed

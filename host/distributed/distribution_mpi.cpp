@@ -15,7 +15,7 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "host/distributed/decomposition_summary.hpp"
+#include "host/halo/halo_radius.hpp"
 #include "host/distributed/distribution.hpp"
 #include "host/distributed/local_part.hpp"
 #include "host/distributed/migration.hpp"

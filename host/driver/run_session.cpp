@@ -21,6 +21,7 @@
 #include "host/driver/observers.hpp"
 #include "host/driver/output_rows.hpp"
 #include "host/driver/progress.hpp"
+#include "host/driver/restart_hint.hpp"
 #include "host/driver/run_checkpoint.hpp"
 #include "host/driver/run_report.hpp"
 #include "host/driver/thread_governor.hpp"
@@ -162,8 +163,10 @@ struct RunSession::Impl {
   void fail(const NumericalFailure& f);
   bool running() const {
     return !finished && !failed && !stop_requested && solver->time() < end_time - eps &&
-           (options.max_steps <= 0 || solver->steps() < options.max_steps);
+           !step_limit_reached();
   }
+  // --max-steps counts this session's steps: a continued run takes N more.
+  bool step_limit_reached() const { return options.max_steps > 0 && session_steps >= options.max_steps; }
   bool step();
   void finish();
 };
@@ -466,7 +469,7 @@ bool RunSession::Impl::step() {
       at.next_checkpoint = next_multiple(at.next_checkpoint, scene.output.checkpoint_interval, t + eps);
     stop_requested = stop_signal();  // one agreement per step in a distributed run
     const bool stops =
-        t >= end_time - eps || (options.max_steps > 0 && solver->steps() >= options.max_steps) || stop_requested;
+        t >= end_time - eps || step_limit_reached() || stop_requested;
     if (checkpoint_due && !stops) write_checkpoint_now();  // a stop writes its own in finish()
     progress->update(t, solver->steps());
   } catch (const NumericalFailure& f) {
@@ -490,6 +493,15 @@ void RunSession::Impl::finish() {
         status.state = "interrupted";
         result.exit_code = 128 + interrupt_signal();
         result.message = "interrupted";
+      } else if (solver->time() < end_time - eps) {
+        // Not "completed": the end time was not reached (--max-steps, or a
+        // binding that finished early); run.json says where it stopped.
+        status.state = "stopped";
+        char why[160];
+        std::snprintf(why, sizeof why, "%s at t = %.9g s of end_time %.9g s",
+                      step_limit_reached() ? "stopped at the step limit (--max-steps)" : "finished before end_time",
+                      solver->time(), end_time);
+        status.message = why;
       } else {
         status.state = "completed";
       }
@@ -513,12 +525,11 @@ void RunSession::Impl::finish() {
   result.steps = status.steps;
   result.time = status.simulated_time;
   if (status.state == "interrupted" && root)
-    std::fprintf(stderr,
-                 "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: %smfsd run %s "
-                 "--restart %s\n",
+    std::fprintf(stderr, "mfsd: interrupted at t = %.9g s, step %ld; checkpoint in %s/\nmfsd: continue with: %s%s\n",
                  solver->time(), solver->steps(), status.checkpoint.c_str(),
                  dist ? ("mpiexec -n " + std::to_string(dist->ranks()) + " ").c_str() : "",
-                 doc.source_name.rfind('<', 0) == 0 ? "" : doc.source_name.c_str(), dir.c_str());
+                 restart_command(doc, options, dir).c_str());
+  if (status.state == "stopped" && root && !options.quiet) std::printf("mfsd: %s\n", status.message.c_str());
   if (!options.quiet && root) {
     char wall[32];
     format_duration(status.wall_seconds, wall, sizeof wall);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "host/scene/nearest_name.hpp"
 #include "host/scene/scene_error.hpp"
 
 namespace mfsd {
@@ -31,7 +32,14 @@ JsonNode::JsonNode(const Json& value, std::string path, Json& resolved, Constant
 bool JsonNode::has(const std::string& key) const { return value_->contains(key); }
 
 const Json& JsonNode::required(const std::string& key) const {
-  if (!value_->contains(key)) throw SceneError(key_path(key), "nothing", "this key (it is required)");
+  if (!value_->contains(key)) {
+    std::vector<std::string> present;  // a misspelling of the key, e.g. poison_ratio for poisson_ratio
+    for (auto it = value_->begin(); it != value_->end(); ++it)
+      if (!known_.count(it.key())) present.push_back(it.key());
+    const std::string hint = nearest_name(key, present);
+    throw SceneError(key_path(key), hint.empty() ? "nothing" : "nothing, but '" + hint + "', an unknown key",
+                     "this key (it is required)" + std::string(hint.empty() ? "" : "; did you mean '" + key + "'?"));
+  }
   return (*value_)[key];
 }
 
@@ -234,7 +242,9 @@ void JsonNode::finish() {
     if (known_.count(it.key())) continue;
     std::string allowed;
     for (auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
-    throw SceneError(key_path(it.key()), "an unknown key", "one of: " + allowed);
+    const std::string hint = nearest_name(it.key(), std::vector<std::string>(known_.begin(), known_.end()));
+    throw SceneError(key_path(it.key()), hint.empty() ? "an unknown key" : "an unknown key; did you mean '" + hint + "'?",
+                     "one of: " + allowed);
   }
 }
 

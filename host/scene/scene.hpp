@@ -327,6 +327,9 @@ struct Scene {
   std::string name;
   std::string base_dir;  // folder of the scene file: relative file names (STL) start here
   std::string description;
+  // "units": "SI" (default: materials implausible for a solid in SI units get
+  // a warning) or "nondimensional" (no such warning; seed 000's muscle cube).
+  bool si_units = true;
   int dimension = 2;
   SolverSpec solver;
   std::vector<BodySpec> bodies;

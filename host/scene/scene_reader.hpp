@@ -13,12 +13,14 @@ namespace mfsd {
 
 struct SceneDocument {
   std::string source_name;  // file path or "<default scene>"
+  std::vector<std::string> overrides;  // the --set path=value assignments, in order
   Json source;              // as read, overrides applied
   Json resolved;            // every key with its value or default
   Scene scene;
 };
 
-// Parses JSON text; syntax errors become SceneErrors "name:line:column: ...".
+// Parses JSON text; syntax errors become SceneErrors "name:line:column: ..."
+// (scene_text.cpp, with apply_override, check_file_name and the loaders).
 Json parse_scene_json(const std::string& text, const std::string& source_name);
 
 // Applies "path=value": path of object keys and array indices (or array
@@ -26,6 +28,17 @@ Json parse_scene_json(const std::string& text, const std::string& source_name);
 // bodies.plate.material.poisson_ratio=0.4, constants.vf=0.1. The value is
 // parsed as JSON, else taken as a string.
 void apply_override(Json& doc, const std::string& assignment);
+
+// The readers of the scene's sections, one file each (read_scene, in
+// scene_reader.cpp, calls them in the scene's order):
+// solver (solver_reader.cpp),
+SolverSpec read_solver(JsonNode s, int dim);
+// bodies[].material (material_reader.cpp): the model and its constants; then
+// the checks that derived quantities are finite and that the model belongs
+// to the body's method.
+MaterialSpec read_material(JsonNode m, double spacing, int dim, std::vector<std::string>& warnings);
+void check_body_properties(const BodySpec& body, const SolverSpec& solver, int dim, const std::string& path);
+void check_method_material(const BodySpec& body, const SolverSpec& solver, const std::string& path);
 
 // A shape object of the given dimension (shape_reader.cpp); file names
 // (STL) are relative to `base_dir`, the scene file's folder.

@@ -136,6 +136,15 @@ Shape read_shape(JsonNode node, int dim, const std::string& base_dir) {
     const std::filesystem::path file = std::filesystem::path(s.source).is_absolute() || base_dir.empty()
                                            ? std::filesystem::path(s.source)
                                            : std::filesystem::path(base_dir) / s.source;
+    if (!std::filesystem::is_regular_file(file)) {  // name the folder it looked in
+      std::error_code ec;
+      const auto where = std::filesystem::absolute(file, ec);
+      throw SceneError(n.key_path("file") + ": STL file '" + s.source + "' cannot be opened: looked for " +
+                       (ec ? file.string() : where.lexically_normal().string()) +
+                       (std::filesystem::path(s.source).is_absolute()
+                            ? std::string()
+                            : " (a relative name is taken from the scene file's folder)"));
+    }
     try {
       s.triangles = TriangleMesh::load(file.string(), scale);
     } catch (const std::runtime_error& e) {

@@ -10,7 +10,7 @@
 
 #include "host/backend/cuda_devices.hpp"
 #include "host/backend/stage_timers.hpp"
-#include "host/distributed/ghost_exchange.hpp"
+#include "host/halo/ghost_exchange.hpp"
 #include "host/output/snapshot.hpp"
 #include "host/particles/field_memory.hpp"
 #include "host/particles/state_archive.hpp"

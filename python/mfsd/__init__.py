@@ -18,6 +18,7 @@ from __future__ import annotations
 import json
 import numbers
 import os
+import weakref
 
 import numpy as np
 
@@ -206,6 +207,16 @@ def _columns(series):
     return {c: data[:, k].copy() for k, c in enumerate(columns)}
 
 
+def _finish_dropped(native):
+    """Finishes the run of a Simulation that was garbage-collected (or alive at
+    the interpreter's exit) without finish(): run.json and timing.json."""
+    try:
+        native.finish()
+    except Exception as e:  # noqa: BLE001 - a finaliser must not raise
+        import sys
+        print("mfsd: a dropped Simulation could not finish its run: %s" % e, file=sys.stderr)
+
+
 class Simulation:
     """One run of a scene, as `mfsd run` does it, stepped from Python.
 
@@ -233,6 +244,10 @@ class Simulation:
                                os.fspath(output_dir) if output_dir is not None else "", bool(quiet),
                                int(max_steps), "python")
         self.fields = _Fields(self)
+        # A Simulation dropped (or alive at exit) before finish(): the run
+        # finishes itself, so run.json never stays "running" and timing.json
+        # is written; run.json says where it stopped.
+        self._finalizer = weakref.finalize(self, _finish_dropped, self._native)
 
     # -- stepping ---------------------------------------------------------
     def step(self, n=1):
@@ -287,6 +302,7 @@ class Simulation:
         its result. Called by the steps that reach the end, by close() and
         on leaving a `with` block."""
         if self._result is None:
+            self._finalizer.detach()
             self._result = dict(self._native.finish())
         return self._result
 

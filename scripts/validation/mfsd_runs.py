@@ -121,6 +121,17 @@ def period(t, y):
     return 2 * (n * skt - sk * st) / (n * skk - sk * sk)
 
 
+def plate_run(config, sets, outdir, threads=0, reuse=False):
+    """One run of an oscillating plate (the TLSPH, ULSPH and RKPM plate
+    studies): its tip's y history, the period fitted to it, the range of the
+    kinetic + strain energy relative to its start, and timing.json."""
+    probes, energies, timing = run_and_read(config, sets, outdir, threads, reuse)
+    t, y = probes["time"], probes["tip.position.y"]
+    e = [k + s for k, s in zip(energies["kinetic"], energies["strain"])]
+    return {"t": t, "y": y, "period": period(t, y), "energy_range": [min(e) / e[0] - 1, max(e) / e[0] - 1],
+            "timing": timing}
+
+
 def first_period(t, y):
     """Time of the second crossing after the start (one full oscillation)."""
     c = crossings(t, y)

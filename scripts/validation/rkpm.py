@@ -59,14 +59,11 @@ def plate(args):
         periods = []
         for r in res:
             out = os.path.join(OUT, f"plate_{method.split()[0]}_H{r}")  # rkpm, rkpm_clamped, tlsph
-            probes, energies, timing = m.run_and_read(
-                config, {"constants.H_over_dp": r, "solver.end_time": 0.56, "output.vtu": "false", **sets}, out,
-                args.threads, args.reuse)
-            t, y = probes["time"], probes["tip.position.y"]
-            T = m.period(t, y)
-            e = [k + s for k, s in zip(energies["kinetic"], energies["strain"])]
+            p = m.plate_run(config, {"constants.H_over_dp": r, "solver.end_time": 0.56, "output.vtu": "false", **sets},
+                            out, args.threads, args.reuse)
+            t, y, T, timing = p["t"], p["y"], p["period"], p["timing"]
             case = {"method": method, "H_over_dp": r, "period": T, "error_vs_beam": T / T_BEAM - 1,
-                    "energy_range": [min(e) / e[0] - 1, max(e) / e[0] - 1],
+                    "energy_range": p["energy_range"],
                     "particles": timing.get("particles"), "steps": timing.get("steps"),
                     "particle_steps_per_second": timing.get("particle_steps_per_second"),
                     "wall_seconds": timing.get("wall_seconds")}

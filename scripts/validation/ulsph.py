@@ -66,16 +66,13 @@ def plate(args):
     for r in res:
         for vf, seed in TABLE1.items():
             out = os.path.join(OUT, f"plate_vf{vf}_H{r}")
-            probes, energies, timing = m.run_and_read(
-                "configs/oscillating_plate_ulsph_2d.json",
-                {"constants.vf": vf, "constants.H_over_dp": r, "solver.end_time": 0.62, "output.vtu": "false"},
-                out, args.threads, args.reuse)
-            t, y = probes["time"], probes["tip.position.y"]
-            T = m.period(t, y)
-            e = [k + s for k, s in zip(energies["kinetic"], energies["strain"])]
+            p = m.plate_run("configs/oscillating_plate_ulsph_2d.json",
+                            {"constants.vf": vf, "constants.H_over_dp": r, "solver.end_time": 0.62,
+                             "output.vtu": "false"}, out, args.threads, args.reuse)
+            t, y, T = p["t"], p["y"], p["period"]
             case = {"H_over_dp": r, "vf": vf, "period": T, "seed": seed, "error_vs_seed": T / seed - 1,
-                    "error_vs_theory": T / THEORY - 1, "energy_range": [min(e) / e[0] - 1, max(e) / e[0] - 1],
-                    "particle_steps_per_second": timing.get("particle_steps_per_second")}
+                    "error_vs_theory": T / THEORY - 1, "energy_range": p["energy_range"],
+                    "particle_steps_per_second": p["timing"].get("particle_steps_per_second")}
             result["cases"].append(case)
             print(f"H/dp={r} vf={vf}: T={T:.4f} (seed {seed}, {100 * case['error_vs_seed']:+.2f} %)")
             if vf == 0.05:

@@ -3,7 +3,6 @@
 // left behind on bad input, the documented output files and their columns.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -12,35 +11,17 @@
 #include <sstream>
 #include <string>
 
+#include "cli_shell.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;  // stdout + stderr
-};
+using mfsd::test::Result;
+Result run(const std::string& args) { return mfsd::test::run_mfsd(args); }
 
-Result run(const std::string& args) {
-  const std::string cmd = std::string(MFSD_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-class Cli : public ::testing::Test {
+class Cli : public mfsd::test::ScratchTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mfsd_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // A small valid 2-D scene; `patch` edits it as JSON text replacements.
   std::string scene(const std::string& from = "", const std::string& to = "") {
     std::string s = R"({
@@ -77,7 +58,6 @@ class Cli : public ::testing::Test {
     EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
   }
 
-  fs::path dir_;
 };
 
 }  // namespace

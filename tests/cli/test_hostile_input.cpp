@@ -4,46 +4,26 @@
 // (or the file with line:column), with no output folder left behind, or a
 // valid scene with a sound summary.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "cli_shell.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;  // stdout + stderr
-};
-
-// `shell_prefix` runs before the binary in the same shell (e.g. a ulimit).
+using mfsd::test::Result;
 Result run(const std::string& args, const std::string& shell_prefix = "") {
-  const std::string cmd = shell_prefix + std::string(MFSD_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return mfsd::test::run_mfsd(args, shell_prefix);
 }
 
 const std::string kPlate = std::string(MFSD_SOURCE_DIR) + "/configs/oscillating_plate_2d.json";
 
-class HostileInput : public ::testing::Test {
+class HostileInput : public mfsd::test::ScratchTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mfsd_hostile_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string write(const std::string& text) {
     const fs::path f = dir_ / "scene.json";
     std::ofstream(f) << text;
@@ -68,6 +48,22 @@ class HostileInput : public ::testing::Test {
 })");
   }
 
+  // The same block with `constants` as the text of its constants object.
+  std::string with_constants(const std::string& constants) {
+    std::string text = R"({
+  "name": "block", "dimension": 2,
+  "constants": {)" + constants + R"(},
+  "solver": {"end_time": 0.002},
+  "bodies": [{
+    "name": "block", "spacing": 0.01,
+    "geometry": {"box": {"min": [0, 0], "max": [0.1, 0.05]}},
+    "material": {"model": "neo_hookean", "density": 1000, "youngs_modulus": 1e6, "poisson_ratio": 0.3}
+  }],
+  "output": {"interval": 0.001}
+})";
+    return write(text);
+  }
+
   std::string out() const { return (dir_ / "out").string(); }
 
   // `mfsd check ARGS` and `mfsd run ARGS -o OUT` are input errors naming `message_part`.
@@ -80,31 +76,52 @@ class HostileInput : public ::testing::Test {
       EXPECT_FALSE(fs::exists(out())) << "an output folder was left behind";
     }
   }
-
-  fs::path dir_;
 };
 
 }  // namespace
 
 // Was "internal error: expression compiler: 'bad$name' cannot be a constant name" (exit 1).
 TEST_F(HostileInput, MalformedConstantNamesAreInputErrors) {
-  expect_input_error(kPlate + " --set 'constants.bad$name=1'",
+  expect_input_error(with_constants(R"("bad$name": 1)"),
                      "/constants/bad$name: got \"bad$name\", a character other than a letter, digit or '_' at "
                      "column 4");
-  expect_input_error(kPlate + " --set constants.sin=1", "/constants/sin: got \"sin\", the name of a function");
-  expect_input_error(kPlate + " --set constants.skip=1", "/constants/skip: got \"skip\", a reserved word");
-  expect_input_error(kPlate + " --set 'constants.a b=1'", "/constants/a b: got \"a b\", a character other");
+  expect_input_error(with_constants(R"("sin": 1)"), "/constants/sin: got \"sin\", the name of a function");
+  expect_input_error(with_constants(R"("skip": 1)"), "/constants/skip: got \"skip\", a reserved word");
+  expect_input_error(with_constants(R"("a b": 1)"), "/constants/a b: got \"a b\", a character other");
 }
 
 // A constant or a derived body constant that is not finite. The material
 // one was "internal error: expression compiler: constant 'c0' is not finite".
 TEST_F(HostileInput, NonFiniteConstantsAreInputErrors) {
-  expect_input_error(kPlate + " --set 'constants.a=\"exp(1000)\"'",
+  expect_input_error(with_constants(R"("a": "exp(1000)")"),
                      "/constants/a: in expression \"exp(1000)\": column 1: non-finite result in 'exp'");
-  expect_input_error(kPlate + " --set 'constants.a=\"1e308*10\"'", "/constants/a: in expression \"1e308*10\"");
+  expect_input_error(with_constants(R"("a": 1)") + " --set 'constants.a=\"1e308*10\"'",
+                     "/constants/a: in expression \"1e308*10\"");
   expect_input_error(kPlate + " --set bodies.0.material.density=1e-300 --set bodies.0.material.youngs_modulus=1e308",
                      "/bodies/0/material: got density 1e-300, youngs_modulus 1e+308 and poisson_ratio 0.3 (c0 = inf)");
   expect_input_error(kPlate + " --set constants.dp=5e-324", "/bodies/0/spacing: got 4.94066e-324 (dp^d = 0)");
+}
+
+// A --set of a constant the scene does not define changed nothing and ran
+// the default (a resolution study of constants.dpp): now an error naming the
+// nearest constant. Misspelt keys elsewhere say "did you mean" too.
+TEST_F(HostileInput, MisspeltNamesSayDidYouMean) {
+  expect_input_error(kPlate + " --set constants.dpp=0.002",
+                     "--set constants.dpp: got no constant 'dpp' in the scene (did you mean 'dp'?); expected one of "
+                     "its constants: L, H, H_over_dp, dp,");
+  expect_input_error(block() + " --set constants.dp=0.002",
+                     "--set constants.dp: got no constant 'dp' in the scene; expected a scene with constants (this one "
+                     "has none)");
+  expect_input_error(kPlate + " --set solver.endtime=1",
+                     "/solver/endtime: got an unknown key; did you mean 'end_time'?; expected one of:");
+  expect_input_error(block() + " --set bodies.block.material.poison_ratio=0.3 --set bodies.block.material.poisson_ratio=null",
+                     "/bodies/0/material/poisson_ratio: got nothing, but 'poison_ratio', an unknown key; expected this "
+                     "key (it is required); did you mean 'poisson_ratio'?");
+  expect_input_error(kPlate + " --set bodies.plat.spacing=0.001",
+                     "--set bodies.plat.spacing: got no element 'plat' at /bodies/plat (did you mean 'plate'?)");
+  // An existing constant is still set, and a valid key the file leaves out may still be given.
+  const Result ok = run("check " + kPlate + " --set constants.dp=0.004 --set output.checkpoint_interval=0.5");
+  EXPECT_EQ(ok.code, 0) << ok.output;
 }
 
 // An initial speed of 1.6e16 m/s (vf = tan(pi/2)) printed "about
@@ -136,6 +153,43 @@ TEST_F(HostileInput, HugeLatticesAreRefusedBeforeAllocating) {
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("mfsd: error: /bodies/0/spacing: got 2e-05 ("), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("expected a scene whose particles fit in memory (2.05 GB available to mfsd)"),
+            std::string::npos)
+      << r.output;
+}
+
+// Legal but implausible materials in SI units run, with a warning that
+// names the cost (the steel plate at 7.8 kg/m^3 takes 32x the steps).
+TEST_F(HostileInput, ImplausibleMaterialsAreWarned) {
+  const Result slip = run("check " + kPlate + " --set bodies.plate.material.density=7.8");
+  EXPECT_EQ(slip.code, 0) << slip.output;
+  EXPECT_NE(slip.output.find("warning: /bodies/0/material: density 7.8 kg/m^3 is outside what solids have in SI units "
+                             "(about 25 to 23,000 kg/m^3); 7.8 looks like g/cm^3 (7800 kg/m^3). With c0 = 462 m/s the "
+                             "run takes about 334964 steps, 32x what it takes at 7800 kg/m^3"),
+            std::string::npos)
+      << slip.output;
+  const Result fast = run("check " + kPlate + " --set bodies.plate.material.youngs_modulus=2.5e11");
+  EXPECT_NE(fast.output.find("c0 14433.8 m/s"), std::string::npos) << fast.output;
+  EXPECT_EQ(fast.output.find("warning"), std::string::npos) << "14.4 km/s is a plausible solid's: " << fast.output;
+  const Result faster = run("check " + kPlate + " --set bodies.plate.material.youngs_modulus=2.5e12");
+  EXPECT_NE(faster.output.find("warning: /bodies/0/material: c0 = 45644 m/s is faster than sound in any solid"),
+            std::string::npos)
+      << faster.output;
+  // The plate as shipped, and seed 000's muscle cube in its own units, run without one.
+  EXPECT_EQ(run("check " + kPlate).output.find("warning"), std::string::npos);
+  const Result muscle = run("check " + std::string(MFSD_SOURCE_DIR) + "/configs/muscle_contraction_3d.json");
+  EXPECT_EQ(muscle.output.find("warning"), std::string::npos) << muscle.output;
+}
+
+// A 7 GB scene under a 4 GB address-space limit ended in "internal error:
+// std::bad_alloc" (exit 1): refused with its size before it is read. The
+// file is sparse (truncate), so the test writes nothing to disk.
+TEST_F(HostileInput, SceneFileBeyondTheMemoryLimit) {
+  const std::string big = write(std::string(100, ' '));
+  fs::resize_file(big, 7000000000ULL);
+  const Result r = run("check " + big, "ulimit -v 4000000; ");
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("mfsd: error: " + big + ": got a file of 7000000000 bytes; expected a scene file that fits "
+                          "in the memory this process may use (its address space is limited to 4096000000 bytes"),
             std::string::npos)
       << r.output;
 }

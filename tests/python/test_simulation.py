@@ -111,7 +111,15 @@ def test_step_count_and_end(configs, out):
     assert run["status"] == "completed" and run["steps"] == sim.steps
 
 
-def test_snapshot_and_checkpoint_continue_with_the_cli(configs, out):
+def test_snapshot_and_checkpoint_continue_with_the_cli(configs, out, tmp_path):
+    """A snapshot and a checkpoint taken from Python after 4 steps; `mfsd run
+    --restart` then ends where the uninterrupted run ends, with the same
+    energies.csv and probes.csv bytes."""
+    binary = os.environ.get("MFSD_BINARY")
+    if not binary:
+        pytest.skip("MFSD_BINARY not set (ctest sets it)")
+    whole = str(tmp_path / "whole")
+    mfsd.Simulation(plate(configs), threads=1, output_dir=whole).run().finish()
     sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
     sim.step(4)
     sim.write_snapshot()
@@ -120,6 +128,11 @@ def test_snapshot_and_checkpoint_continue_with_the_cli(configs, out):
     pvd = open(os.path.join(out, "snapshots.pvd")).read()
     assert pvd.count("<DataSet") == 2  # t = 0 and the one asked for
     sim.finish()
+    subprocess.run([binary, "run", os.path.join(configs, PLATE), "-q", "--threads", "1", "--set",
+                    "solver.end_time=0.01", "--set", "output.interval=0.005", "--restart", out], check=True)
+    assert json.load(open(os.path.join(out, "run.json")))["status"] == "completed"
+    for name in ("energies.csv", "probes.csv"):
+        assert open(os.path.join(out, name)).read() == open(os.path.join(whole, name)).read(), name
 
 
 def test_checkpoint_in_a_folder_continues_with_the_cli(configs, out, tmp_path):
@@ -161,3 +174,17 @@ def test_dlpack_view_shares_the_solver_memory(configs, out):
     assert not np.array_equal(before, d)
     assert sim.fields.dlpack("velocity").__dlpack_device__()[0] == 1  # kDLCPU
     sim.finish()
+
+
+def test_a_dropped_simulation_finishes_its_run(configs, out):
+    """A Simulation garbage-collected before finish() (the README's five lines
+    without it) writes run.json and timing.json: its run is not left
+    "running"; run.json says it stopped before the end time."""
+    sim = mfsd.Simulation(plate(configs), threads=1, output_dir=out)
+    sim.step(5)
+    del sim
+    gc.collect()
+    run = json.load(open(os.path.join(out, "run.json")))
+    assert run["status"] == "stopped" and run["steps"] == 5
+    assert "finished before end_time" in run["message"]
+    assert os.path.exists(os.path.join(out, "timing.json"))

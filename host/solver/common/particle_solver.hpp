@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "host/backend/device_results.hpp"
-#include "host/distributed/halo_check.hpp"
+#include "host/halo/halo_check.hpp"
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
 #include "host/scene/body_properties.hpp"
@@ -425,7 +425,7 @@ class ParticleSolver : public Solver {
     s.max_inverse_stretch = Real(v[2]), s.max_stiffening = Real(v[3]);
   }
 
-  // MFSD_VERIFY_HALO=1 (test only; host/distributed/halo_check.hpp): every
+  // MFSD_VERIFY_HALO=1 (test only; host/halo/halo_check.hpp): every
   // particle within `support` (per body of the owned particle) of an owned
   // particle at the positions x, of its own body or (across_bodies) of any,
   // is held by this rank; else the run stops with the missing pair.

@@ -31,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "host/distributed/decomposition_summary.hpp"
+#include "host/halo/halo_radius.hpp"
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/solver/common/particle_solver.hpp"

@@ -116,10 +116,9 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
           half_pair_for(Cpu{}, s_.range.begin, s_.range.end, v.half_bandwidth, Vec<D, Real>::zero(), v.acceleration,
                         half_workspace_, half, [&](Index i, const Vec<D, Real>& total) { half.finish(i, total); });
         };
-        if (v.half_float)
-          loop(AccelerationHalfFunctor<D, Real, Hourglass, float>{f, v.half_pairs_f, v.volume});
-        else
-          loop(AccelerationHalfFunctor<D, Real, Hourglass>{f, v.half_pairs, v.volume});
+        v.with_half_pairs([&](const auto& pairs) {
+          loop(AccelerationHalfFunctor<D, Real, Hourglass, HalfPairReal<decltype(pairs)>>{f, pairs, v.volume});
+        });
         return;
       }
     }

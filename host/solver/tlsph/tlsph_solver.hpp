@@ -366,10 +366,10 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
                   StepStatisticsCombine<Real>{}, out);
             });
           };
-          if (v_.half_float)
-            loop(RateHalfStepHalfFunctor<D, Real, float>{f, {v_.half_pairs_f, v_.velocity, v_.volume}});
-          else
-            loop(RateHalfStepHalfFunctor<D, Real>{f, {v_.half_pairs, v_.velocity, v_.volume}});
+          v_.with_half_pairs([&](const auto& pairs) {
+            using P = HalfPairReal<decltype(pairs)>;
+            loop(RateHalfStepHalfFunctor<D, Real, P>{f, {pairs, v_.velocity, v_.volume}});
+          });
           return;
         }
       }
@@ -730,11 +730,10 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
           half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, Mat<D, Real>::zero(), v_.deformation_rate,
                         rate_workspace_, h, [&](Index i, const Mat<D, Real>& total) { h.finish(i, total); });
         };
-        if (v_.half_float)
-          loop(DeformationRateHalfFunctor<D, Real, float>{
-              {v_.half_pairs_f, f, v_.volume}, v_.correction, v_.deformation_rate});
-        else
-          loop(DeformationRateHalfFunctor<D, Real>{{v_.half_pairs, f, v_.volume}, v_.correction, v_.deformation_rate});
+        v_.with_half_pairs([&](const auto& pairs) {
+          using P = HalfPairReal<decltype(pairs)>;
+          loop(DeformationRateHalfFunctor<D, Real, P>{{pairs, f, v_.volume}, v_.correction, v_.deformation_rate});
+        });
         return;
       }
     }
@@ -753,12 +752,10 @@ class TlsphSolver final : public ParticleSolver<B, D, Real> {
           half_pair_for(Cpu{}, Index(0), n, v_.half_bandwidth, SumCount<Real>{Real(0), Real(0)}, indicator_sums_.data(),
                         indicator_workspace_, h, [&](Index i, const SumCount<Real>& t) { h.finish(i, t); });
         };
-        if (v_.half_float)
-          loop(HourglassIndicatorHalfFunctor<D, Real, float>{v_.half_pairs_f, inverse_F, v_.displacement,
-                                                             v_.hourglass_indicator});
-        else
-          loop(HourglassIndicatorHalfFunctor<D, Real>{v_.half_pairs, inverse_F, v_.displacement,
-                                                      v_.hourglass_indicator});
+        v_.with_half_pairs([&](const auto& pairs) {
+          using P = HalfPairReal<decltype(pairs)>;
+          loop(HourglassIndicatorHalfFunctor<D, Real, P>{pairs, inverse_F, v_.displacement, v_.hourglass_indicator});
+        });
         return;
       }
     }

@@ -1,6 +1,9 @@
 // Raw views of the TLSPH particle fields and reference pairs, gathered once
 // after set-up (buffers never move afterwards) and handed to the functors.
 #pragma once
+#include <type_traits>
+#include <utility>
+
 #include "host/solver/common/kinematics.hpp"
 #include "kernels/core/mat.hpp"
 #include "kernels/fracture/phase_field.hpp"
@@ -9,6 +12,10 @@
 #include "kernels/tlsph/reference_pairs.hpp"
 
 namespace mfsd {
+
+// The precision of a pair list's data (with_half_pairs' argument).
+template <class Pairs>
+using HalfPairReal = std::remove_cv_t<std::remove_pointer_t<decltype(std::declval<Pairs>().stretch)>>;
 
 template <int D, class Real>
 struct TlsphViews : Kinematics<D, Real> {
@@ -21,6 +28,16 @@ struct TlsphViews : Kinematics<D, Real> {
   // issue 24 item 4): then half_float, and half_pairs_f in place of half_pairs.
   ReferencePairs<D, float> half_pairs_f{};
   bool half_float = false;
+  // The one place the half loops choose between the two: visit(pairs) with
+  // the list in the precision its data are stored in (ReferencePairs<D,
+  // float> or <D, Real>); HalfPairReal<decltype(pairs)> names that precision.
+  template <class Visit>
+  void with_half_pairs(Visit&& visit) const {
+    if (half_float)
+      visit(half_pairs_f);
+    else
+      visit(half_pairs);
+  }
   Mat<D, Real>* deformation_gradient;
   Mat<D, Real>* deformation_rate;
   const Mat<D, Real>* correction;

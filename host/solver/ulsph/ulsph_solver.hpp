@@ -31,8 +31,8 @@
 #include <string>
 #include <vector>
 
-#include "host/distributed/decomposition_summary.hpp"
-#include "host/distributed/halo_check.hpp"
+#include "host/halo/halo_radius.hpp"
+#include "host/halo/halo_check.hpp"
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/solver/common/particle_solver.hpp"
 #include "kernels/core/owned_only.hpp"
@@ -472,7 +472,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   }
 
   // MFSD_VERIFY_HALO=1: after every search, the brute-force check that each
-  // owned particle's partners are all held here (host/distributed/halo_check.hpp).
+  // owned particle's partners are all held here (host/halo/halo_check.hpp).
   // MFSD_VERIFY_HALO=1 with contact: at every step, every particle of any
   // body within the contact's reach of an owned particle is held here (the
   // contact searches its pairs at every step, with positions moved since the

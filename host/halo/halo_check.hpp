@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "host/distributed/ghost_exchange.hpp"
+#include "host/halo/ghost_exchange.hpp"
 
 namespace mfsd::distributed {
 

@@ -1,4 +1,4 @@
-#include "host/distributed/halo_check.hpp"
+#include "host/halo/halo_check.hpp"
 
 #include <cmath>
 #include <cstdlib>
