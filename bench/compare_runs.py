@@ -8,7 +8,7 @@ Usage: bench/compare_runs.py OLD_MFSD NEW_MFSD [--threads N] [--old-args "ARGS"]
 e.g. --new-args "--pair-loop half").
 With --all-scenes [--max-steps N] it runs every shipped scene (configs/*.json)
 for N steps (default 300) instead and compares every CSV file of the two runs
-byte for byte: a change that must not change results (a refactoring, a build
+byte for byte (--old-configs DIR: the old binary reads DIR's scenes): a change that must not change results (a refactoring, a build
 option) prints "identical" for each scene."""
 import argparse
 import shlex
@@ -47,9 +47,10 @@ def all_scenes(args):
     differ = []
     for scene in scenes:
         outs = []
-        for tag, binary, more in (("old", args.old, args.old_args), ("new", args.new, args.new_args)):
+        for tag, binary, more, configs in (("old", args.old, args.old_args, args.old_configs or "configs"),
+                                           ("new", args.new, args.new_args, "configs")):
             out = os.path.join(ROOT, "out", "compare_all", f"{scene[:-5]}_{tag}")
-            cmd = [binary, "run", os.path.join(ROOT, "configs", scene), "-o", out, "-q", "--threads",
+            cmd = [binary, "run", os.path.join(ROOT, configs, scene), "-o", out, "-q", "--threads",
                    str(args.threads), "--max-steps", str(args.max_steps)] + shlex.split(more)
             subprocess.run(cmd, check=True)
             outs.append(out)
@@ -79,6 +80,7 @@ def main():
     ap.add_argument("--new-args", default="")
     ap.add_argument("--all-scenes", action="store_true")
     ap.add_argument("--max-steps", type=int, default=300)
+    ap.add_argument("--old-configs", help="the old binary's scenes (its checkout's configs/, when a scene gained a key)")
     args = ap.parse_args()
     if args.all_scenes:
         sys.exit(all_scenes(args))

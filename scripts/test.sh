@@ -28,6 +28,12 @@ cmake_args+=("-DMFSD_CUDA=${MFSD_CUDA:-AUTO}")
 start=$(date +%s)
 mfsd_build "${cmake_args[@]}"
 mfsd_log "build took $(( $(date +%s) - start )) s"
+# ctest starts the costliest tests first when it knows their costs: a fresh
+# build folder gets the costs of a full run (tests/ctest_cost_data.txt, from
+# build/Testing/Temporary/CTestCostData.txt), so that the long RKPM and MPI
+# runs do not start last and leave a core idle at the end.
+costs=$MFSD_BUILD/Testing/Temporary/CTestCostData.txt
+[[ -f $costs ]] || { mkdir -p "$(dirname "$costs")" && cp "$MFSD_ROOT/tests/ctest_cost_data.txt" "$costs"; }
 args=(--test-dir "$MFSD_BUILD" --output-on-failure -j "$(nproc 2>/dev/null || echo 2)")
 [[ -n $exclude ]] && args+=(-LE "$exclude")
 ctest "${args[@]}"

@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "host/distributed/halo.hpp"
-#include "host/halo/halo_radius.hpp"
 #include "host/distributed/rcb.hpp"
+#include "host/halo/halo_radius.hpp"
 
 namespace mfsd::distributed {
 

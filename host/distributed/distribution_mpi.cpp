@@ -15,10 +15,10 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "host/halo/halo_radius.hpp"
 #include "host/distributed/distribution.hpp"
 #include "host/distributed/local_part.hpp"
 #include "host/distributed/migration.hpp"
+#include "host/halo/halo_radius.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/solver/numerical_failure.hpp"
 

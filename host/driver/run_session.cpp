@@ -162,8 +162,7 @@ struct RunSession::Impl {
   void governed_step(double seconds);
   void fail(const NumericalFailure& f);
   bool running() const {
-    return !finished && !failed && !stop_requested && solver->time() < end_time - eps &&
-           !step_limit_reached();
+    return !finished && !failed && !stop_requested && solver->time() < end_time - eps && !step_limit_reached();
   }
   // --max-steps counts this session's steps: a continued run takes N more.
   bool step_limit_reached() const { return options.max_steps > 0 && session_steps >= options.max_steps; }
@@ -468,8 +467,7 @@ bool RunSession::Impl::step() {
     if (scene.output.checkpoint_interval > 0)
       at.next_checkpoint = next_multiple(at.next_checkpoint, scene.output.checkpoint_interval, t + eps);
     stop_requested = stop_signal();  // one agreement per step in a distributed run
-    const bool stops =
-        t >= end_time - eps || step_limit_reached() || stop_requested;
+    const bool stops = t >= end_time - eps || step_limit_reached() || stop_requested;
     if (checkpoint_due && !stops) write_checkpoint_now();  // a stop writes its own in finish()
     progress->update(t, solver->steps());
   } catch (const NumericalFailure& f) {

@@ -243,7 +243,8 @@ void JsonNode::finish() {
     std::string allowed;
     for (auto& k : known_) allowed += (allowed.empty() ? "" : ", ") + k;
     const std::string hint = nearest_name(it.key(), std::vector<std::string>(known_.begin(), known_.end()));
-    throw SceneError(key_path(it.key()), hint.empty() ? "an unknown key" : "an unknown key; did you mean '" + hint + "'?",
+    throw SceneError(key_path(it.key()),
+                     hint.empty() ? "an unknown key" : "an unknown key; did you mean '" + hint + "'?",
                      "one of: " + allowed);
   }
 }

@@ -44,7 +44,7 @@ std::vector<std::string> material_plausibility_warnings(const Scene& scene) {
     const BodySpec& b = scene.bodies[k];
     const double rho = b.material.density;
     const BodyProperties p = body_properties(b, scene.solver, scene.dimension);
-    const bool light = rho < kLightest, dense = rho > kDensest, fast = p.c0 > kFastest;
+    const bool light = rho<kLightest, dense = rho> kDensest, fast = p.c0 > kFastest;
     if (!light && !dense && !fast) continue;
     std::ostringstream w;
     w.precision(6);

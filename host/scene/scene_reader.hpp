@@ -12,10 +12,10 @@
 namespace mfsd {
 
 struct SceneDocument {
-  std::string source_name;  // file path or "<default scene>"
+  std::string source_name;             // file path or "<default scene>"
   std::vector<std::string> overrides;  // the --set path=value assignments, in order
-  Json source;              // as read, overrides applied
-  Json resolved;            // every key with its value or default
+  Json source;                         // as read, overrides applied
+  Json resolved;                       // every key with its value or default
   Scene scene;
 };
 

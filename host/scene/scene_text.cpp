@@ -258,7 +258,8 @@ SceneDocument load_scene_file(const std::string& path, const std::vector<std::st
     const unsigned long long limit = address_space_limit();
     // The text, then the parsed document (several times the text) must fit.
     if (limit > 0 && bytes > limit / 4)
-      throw too_big("its address space is limited to " + std::to_string(limit) + " bytes; a scene needs about 4x its size");
+      throw too_big("its address space is limited to " + std::to_string(limit) +
+                    " bytes; a scene needs about 4x its size");
   }
   std::string text;
   try {

@@ -57,7 +57,6 @@ class Cli : public mfsd::test::ScratchTest {
     // One message line (plus at most the usage hint).
     EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
   }
-
 };
 
 }  // namespace

@@ -52,7 +52,8 @@ class HostileInput : public mfsd::test::ScratchTest {
   std::string with_constants(const std::string& constants) {
     std::string text = R"({
   "name": "block", "dimension": 2,
-  "constants": {)" + constants + R"(},
+  "constants": {)" + constants +
+                       R"(},
   "solver": {"end_time": 0.002},
   "bodies": [{
     "name": "block", "spacing": 0.01,
@@ -82,20 +83,20 @@ class HostileInput : public mfsd::test::ScratchTest {
 
 // Was "internal error: expression compiler: 'bad$name' cannot be a constant name" (exit 1).
 TEST_F(HostileInput, MalformedConstantNamesAreInputErrors) {
-  expect_input_error(with_constants(R"("bad$name": 1)"),
+  expect_input_error(with_constants(R"j("bad$name": 1)j"),
                      "/constants/bad$name: got \"bad$name\", a character other than a letter, digit or '_' at "
                      "column 4");
-  expect_input_error(with_constants(R"("sin": 1)"), "/constants/sin: got \"sin\", the name of a function");
-  expect_input_error(with_constants(R"("skip": 1)"), "/constants/skip: got \"skip\", a reserved word");
-  expect_input_error(with_constants(R"("a b": 1)"), "/constants/a b: got \"a b\", a character other");
+  expect_input_error(with_constants(R"j("sin": 1)j"), "/constants/sin: got \"sin\", the name of a function");
+  expect_input_error(with_constants(R"j("skip": 1)j"), "/constants/skip: got \"skip\", a reserved word");
+  expect_input_error(with_constants(R"j("a b": 1)j"), "/constants/a b: got \"a b\", a character other");
 }
 
 // A constant or a derived body constant that is not finite. The material
 // one was "internal error: expression compiler: constant 'c0' is not finite".
 TEST_F(HostileInput, NonFiniteConstantsAreInputErrors) {
-  expect_input_error(with_constants(R"("a": "exp(1000)")"),
+  expect_input_error(with_constants(R"j("a": "exp(1000)")j"),
                      "/constants/a: in expression \"exp(1000)\": column 1: non-finite result in 'exp'");
-  expect_input_error(with_constants(R"("a": 1)") + " --set 'constants.a=\"1e308*10\"'",
+  expect_input_error(with_constants(R"j("a": 1)j") + " --set 'constants.a=\"1e308*10\"'",
                      "/constants/a: in expression \"1e308*10\"");
   expect_input_error(kPlate + " --set bodies.0.material.density=1e-300 --set bodies.0.material.youngs_modulus=1e308",
                      "/bodies/0/material: got density 1e-300, youngs_modulus 1e+308 and poisson_ratio 0.3 (c0 = inf)");
@@ -114,9 +115,10 @@ TEST_F(HostileInput, MisspeltNamesSayDidYouMean) {
                      "has none)");
   expect_input_error(kPlate + " --set solver.endtime=1",
                      "/solver/endtime: got an unknown key; did you mean 'end_time'?; expected one of:");
-  expect_input_error(block() + " --set bodies.block.material.poison_ratio=0.3 --set bodies.block.material.poisson_ratio=null",
-                     "/bodies/0/material/poisson_ratio: got nothing, but 'poison_ratio', an unknown key; expected this "
-                     "key (it is required); did you mean 'poisson_ratio'?");
+  expect_input_error(
+      block() + " --set bodies.block.material.poison_ratio=0.3 --set bodies.block.material.poisson_ratio=null",
+      "/bodies/0/material/poisson_ratio: got nothing, but 'poison_ratio', an unknown key; expected this "
+      "key (it is required); did you mean 'poisson_ratio'?");
   expect_input_error(kPlate + " --set bodies.plat.spacing=0.001",
                      "--set bodies.plat.spacing: got no element 'plat' at /bodies/plat (did you mean 'plate'?)");
   // An existing constant is still set, and a valid key the file leaves out may still be given.
@@ -188,7 +190,8 @@ TEST_F(HostileInput, SceneFileBeyondTheMemoryLimit) {
   fs::resize_file(big, 7000000000ULL);
   const Result r = run("check " + big, "ulimit -v 4000000; ");
   EXPECT_EQ(r.code, 2) << r.output;
-  EXPECT_NE(r.output.find("mfsd: error: " + big + ": got a file of 7000000000 bytes; expected a scene file that fits "
+  EXPECT_NE(r.output.find("mfsd: error: " + big +
+                          ": got a file of 7000000000 bytes; expected a scene file that fits "
                           "in the memory this process may use (its address space is limited to 4096000000 bytes"),
             std::string::npos)
       << r.output;

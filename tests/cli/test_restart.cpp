@@ -166,13 +166,14 @@ TEST_F(Restart, InterruptedRunContinuesBitForBit) {
   // each written as it is reached), not after a fixed wall time that a slow
   // machine spends in set-up and a fast one after the end.
   const std::string energies = out("b") + "/energies.csv";
-  const Result b = shell("(" + std::string(MFSD_BINARY) + " run " + common + " -o " + out("b") +
-                         " & p=$!; until [ -f " + energies + " ] && [ $(wc -l < " + energies +
-                         ") -ge 21 ]; do sleep 0.005; done; kill -INT $p; wait $p)");
+  const Result b =
+      shell("(" + std::string(MFSD_BINARY) + " run " + common + " -o " + out("b") + " & p=$!; until [ -f " + energies +
+            " ] && [ $(wc -l < " + energies + ") -ge 21 ]; do sleep 0.005; done; kill -INT $p; wait $p)");
   ASSERT_EQ(b.code, 130) << b.output;
   // The printed command continues the run as it stands, --set options included.
   const std::string hint = "run " + scene("oscillating_plate_2d.json") +
-                           " --set constants.H_over_dp=8 --set solver.end_time=0.4 --threads 1 -q --restart " + out("b");
+                           " --set constants.H_over_dp=8 --set solver.end_time=0.4 --threads 1 -q --restart " +
+                           out("b");
   EXPECT_NE(b.output.find("mfsd: continue with: mfsd " + hint + "\n"), std::string::npos) << b.output;
   const auto run_b = nlohmann::json::parse(read(fs::path(out("b")) / "run.json"));
   EXPECT_EQ(run_b["status"], "interrupted");
@@ -187,15 +188,16 @@ TEST_F(Restart, InterruptedRunContinuesBitForBit) {
 // a run that stops at the step limit says so and is never "completed".
 TEST_F(Restart, MaxStepsCountsFromTheRestart) {
   const std::string common = scene("oscillating_plate_2d.json") + " -q --threads 1 --set solver.end_time=0.4";
-  const Result b = run_mfsd("run " + common + " -o " + out("b") + " --max-steps 50 --set output.checkpoint_interval=1e30");
+  const Result b =
+      run_mfsd("run " + common + " -o " + out("b") + " --max-steps 50 --set output.checkpoint_interval=1e30");
   ASSERT_EQ(b.code, 0) << b.output;
   auto run_b = nlohmann::json::parse(read(fs::path(out("b")) / "run.json"));
   EXPECT_EQ(run_b["status"], "stopped");
   EXPECT_EQ(run_b["steps"].get<long>(), 50);
   EXPECT_NE(run_b["message"].get<std::string>().find("stopped at the step limit (--max-steps) at t = "),
             std::string::npos);
-  const Result c = run_mfsd("run " + common + " --set output.checkpoint_interval=1e30 --max-steps 30 --restart " +
-                            out("b"));
+  const Result c =
+      run_mfsd("run " + common + " --set output.checkpoint_interval=1e30 --max-steps 30 --restart " + out("b"));
   ASSERT_EQ(c.code, 0) << c.output;
   run_b = nlohmann::json::parse(read(fs::path(out("b")) / "run.json"));
   EXPECT_EQ(run_b["status"], "stopped");

@@ -31,8 +31,8 @@
 #include <string>
 #include <vector>
 
-#include "host/halo/halo_radius.hpp"
 #include "host/halo/halo_check.hpp"
+#include "host/halo/halo_radius.hpp"
 #include "host/neighbors/cell_list_search.hpp"
 #include "host/solver/common/particle_solver.hpp"
 #include "kernels/core/owned_only.hpp"
