@@ -11,7 +11,7 @@ mfsd_log() { printf '[mfsd] %s\n' "$*" >&2; }
 # command-line parsing, GoogleTest, Google Benchmark; Thrust from Debian only
 # when no CUDA toolkit (whose CCCL provides it) is installed.
 mfsd_required_packages() {
-  local pkgs="g++ cmake ninja-build nlohmann-json3-dev libcxxopts-dev libgtest-dev libbenchmark-dev"
+  local pkgs="g++ cmake ninja-build make nlohmann-json3-dev libcxxopts-dev libgtest-dev libbenchmark-dev"
   if ! mfsd_has_nvcc; then
     pkgs="$pkgs libthrust-dev"
   fi

@@ -15,6 +15,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "host/distributed/block_exchange.hpp"
 #include "host/distributed/distribution.hpp"
 #include "host/distributed/local_part.hpp"
 #include "host/distributed/migration.hpp"
@@ -133,34 +134,11 @@ class MpiGhostExchange final : public GhostExchange {
     return out;
   }
   std::vector<char> exchange_blocks(const std::vector<std::vector<char>>& to_rank) override {
-    const int ranks = int(send_counts_.size()), me = rank();
-    std::vector<int> out(static_cast<size_t>(ranks), 0), in(static_cast<size_t>(ranks), 0);
-    for (int q = 0; q < ranks; ++q) out[size_t(q)] = q == me ? 0 : int(to_rank[size_t(q)].size());
-    MPI_Alltoall(out.data(), 1, MPI_INT, in.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    size_t total = 0;
-    for (int c : in) total += size_t(c);
-    std::vector<char> received(total);
-    std::vector<MPI_Request> requests;
-    size_t at = 0;
-    for (int q = 0; q < ranks; ++q) {
-      if (in[size_t(q)] > 0) {
-        requests.emplace_back();
-        MPI_Irecv(received.data() + at, in[size_t(q)], MPI_BYTE, q, kBlockTag, MPI_COMM_WORLD, &requests.back());
-      }
-      at += size_t(in[size_t(q)]);
-    }
-    for (int q = 0; q < ranks; ++q)
-      if (out[size_t(q)] > 0) {
-        requests.emplace_back();
-        MPI_Isend(to_rank[size_t(q)].data(), out[size_t(q)], MPI_BYTE, q, kBlockTag, MPI_COMM_WORLD, &requests.back());
-        bytes_sent_ += double(out[size_t(q)]);
-      }
-    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-    return received;
+    return distributed::exchange_blocks(to_rank, &bytes_sent_);
   }
   int rank() const override { return world_rank(); }
   double bytes_sent() const { return bytes_sent_; }
-  static constexpr int kTag = 25, kBlockTag = 27;
+  static constexpr int kTag = 25;  // exchange_blocks sends with tag 27
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
 
@@ -747,6 +725,38 @@ MpiSession::~MpiSession() {
 }
 
 bool MpiSession::active() { return g_initialized; }
+namespace distributed {
+
+std::vector<char> exchange_blocks(const std::vector<std::vector<char>>& to_rank, double* bytes_sent) {
+  constexpr int kTag = 27;  // apart from the halo refresh's 25
+  const int ranks = world_size(), me = world_rank();
+  std::vector<int> out(static_cast<size_t>(ranks), 0), in(static_cast<size_t>(ranks), 0);
+  for (int q = 0; q < ranks; ++q) out[size_t(q)] = q == me ? 0 : int(to_rank[size_t(q)].size());
+  MPI_Alltoall(out.data(), 1, MPI_INT, in.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  size_t total = 0;
+  for (int c : in) total += size_t(c);
+  std::vector<char> received(total);
+  std::vector<MPI_Request> requests;
+  size_t at = 0;
+  for (int q = 0; q < ranks; ++q) {
+    if (in[size_t(q)] > 0) {
+      requests.emplace_back();
+      MPI_Irecv(received.data() + at, in[size_t(q)], MPI_BYTE, q, kTag, MPI_COMM_WORLD, &requests.back());
+    }
+    at += size_t(in[size_t(q)]);
+  }
+  for (int q = 0; q < ranks; ++q)
+    if (out[size_t(q)] > 0) {
+      requests.emplace_back();
+      MPI_Isend(to_rank[size_t(q)].data(), out[size_t(q)], MPI_BYTE, q, kTag, MPI_COMM_WORLD, &requests.back());
+      if (bytes_sent) *bytes_sent += double(out[size_t(q)]);
+    }
+  MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  return received;
+}
+
+}  // namespace distributed
+
 int MpiSession::rank() { return g_initialized ? world_rank() : 0; }
 
 void MpiSession::abort(const std::string& message, int code) {

@@ -3,16 +3,18 @@
 // (`scripts/test.sh --mpi`). Every rank cuts the same cloud (the generator
 // and the bisection are deterministic), keeps its own points, and sends each
 // other rank the points of its own that lie within the search radius of that
-// rank's box (MPI_Alltoallv of ids and positions). The received ghosts must
+// rank's box (ids and positions, through the engine's exchange_blocks). The received ghosts must
 // be exactly the halo list of the whole cloud (host/distributed/halo.hpp),
 // which every rank can compute as the oracle here.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <vector>
 
+#include "host/distributed/block_exchange.hpp"
 #include "host/distributed/halo.hpp"
 #include "host/distributed/rcb.hpp"
 
@@ -75,19 +77,22 @@ TEST(MpiHaloExchange, GhostsReceivedAreTheHaloList) {
         if (q != me && d.boxes[size_t(q)].distance(pts[i], dim) < radius)
           out[size_t(q)].insert(out[size_t(q)].end(), {double(i), pts[i][0], pts[i][1], pts[i][2]});
     }
-    std::vector<int> send_counts(parts), recv_counts(parts), send_offsets(parts), recv_offsets(parts);
-    std::vector<double> send;
-    for (int q = 0; q < P; ++q) {
-      send_offsets[size_t(q)] = int(send.size());
-      send_counts[size_t(q)] = int(out[size_t(q)].size());
-      send.insert(send.end(), out[size_t(q)].begin(), out[size_t(q)].end());
+    // Through the engine's own exchange (host/distributed/block_exchange.hpp),
+    // the one a distributed run's migrations and contact candidates take.
+    std::vector<std::vector<char>> blocks(parts);
+    for (std::size_t q = 0; q < parts; ++q) {
+      blocks[q].resize(out[q].size() * sizeof(double));
+      if (!out[q].empty()) std::memcpy(blocks[q].data(), out[q].data(), blocks[q].size());
     }
-    MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    int total = 0;
-    for (int q = 0; q < P; ++q) recv_offsets[size_t(q)] = total, total += recv_counts[size_t(q)];
-    std::vector<double> recv(static_cast<std::size_t>(total));
-    MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE, recv.data(), recv_counts.data(),
-                  recv_offsets.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+    double bytes_sent = 0;
+    const std::vector<char> bytes = exchange_blocks(blocks, &bytes_sent);
+    ASSERT_EQ(bytes.size() % (4 * sizeof(double)), 0u);
+    std::vector<double> recv(bytes.size() / sizeof(double));
+    if (!bytes.empty()) std::memcpy(recv.data(), bytes.data(), bytes.size());
+    const int total = int(recv.size());
+    double expected_sent = 0;
+    for (std::size_t q = 0; q < parts; ++q) expected_sent += q == std::size_t(me) ? 0.0 : double(blocks[q].size());
+    EXPECT_EQ(bytes_sent, expected_sent);
     std::vector<std::size_t> got;
     for (int k = 0; k + 3 < total; k += 4) {
       const std::size_t id = std::size_t(recv[size_t(k)]);
