@@ -43,18 +43,13 @@ mfsd_ensure_python_packages() {
     return 0
   fi
   if ! mfsd_has_python_modules "$MFSD_VENV/bin/python3"; then
+    # (Debian's python3 needs python3-venv: mfsd_required_packages asks for it.)
     if [[ ! -x $MFSD_VENV/bin/python3 ]]; then
-      if ! "$system" -m venv --system-site-packages "$MFSD_VENV" 2>/dev/null; then
+      "$system" -m venv --system-site-packages "$MFSD_VENV" || {
         rm -rf "$MFSD_VENV"
-        if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then  # Debian's python3 needs python3-venv
-          mfsd_log "installing Debian package python3-venv"
-          apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv >/dev/null
-        fi
-        "$system" -m venv --system-site-packages "$MFSD_VENV" || {
-          mfsd_log "could not make a virtual environment in $MFSD_VENV (Debian: apt-get install python3-venv)"
-          exit 1
-        }
-      fi
+        mfsd_log "could not make a virtual environment in $MFSD_VENV (Debian: apt-get install python3-venv)"
+        exit 1
+      }
     fi
     mfsd_log "installing Python packages into $MFSD_VENV: $mfsd_python_modules"
     "$MFSD_VENV/bin/python3" -m pip install -q $mfsd_python_modules || {

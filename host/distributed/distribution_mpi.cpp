@@ -29,6 +29,9 @@ namespace {
 
 bool g_initialized = false;
 
+// The tag of exchange_blocks' messages, apart from the halo refresh's.
+constexpr int kBlockTag = 27;
+
 int world_rank() {
   int r = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &r);
@@ -138,7 +141,7 @@ class MpiGhostExchange final : public GhostExchange {
   }
   int rank() const override { return world_rank(); }
   double bytes_sent() const { return bytes_sent_; }
-  static constexpr int kTag = 25;  // exchange_blocks sends with tag 27
+  static constexpr int kTag = 25;  // the halo refresh (exchange_blocks: kBlockTag)
   long exchanges() const { return exchanges_; }
   void reset_counts() { bytes_sent_ = 0, exchanges_ = 0; }
 
@@ -728,7 +731,6 @@ bool MpiSession::active() { return g_initialized; }
 namespace distributed {
 
 std::vector<char> exchange_blocks(const std::vector<std::vector<char>>& to_rank, double* bytes_sent) {
-  constexpr int kTag = 27;  // apart from the halo refresh's 25
   const int ranks = world_size(), me = world_rank();
   std::vector<int> out(static_cast<size_t>(ranks), 0), in(static_cast<size_t>(ranks), 0);
   for (int q = 0; q < ranks; ++q) out[size_t(q)] = q == me ? 0 : int(to_rank[size_t(q)].size());
@@ -741,14 +743,14 @@ std::vector<char> exchange_blocks(const std::vector<std::vector<char>>& to_rank,
   for (int q = 0; q < ranks; ++q) {
     if (in[size_t(q)] > 0) {
       requests.emplace_back();
-      MPI_Irecv(received.data() + at, in[size_t(q)], MPI_BYTE, q, kTag, MPI_COMM_WORLD, &requests.back());
+      MPI_Irecv(received.data() + at, in[size_t(q)], MPI_BYTE, q, kBlockTag, MPI_COMM_WORLD, &requests.back());
     }
     at += size_t(in[size_t(q)]);
   }
   for (int q = 0; q < ranks; ++q)
     if (out[size_t(q)] > 0) {
       requests.emplace_back();
-      MPI_Isend(to_rank[size_t(q)].data(), out[size_t(q)], MPI_BYTE, q, kTag, MPI_COMM_WORLD, &requests.back());
+      MPI_Isend(to_rank[size_t(q)].data(), out[size_t(q)], MPI_BYTE, q, kBlockTag, MPI_COMM_WORLD, &requests.back());
       if (bytes_sent) *bytes_sent += double(out[size_t(q)]);
     }
   MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);

@@ -16,10 +16,8 @@ constexpr double kLightest = 25.0, kDensest = 23000.0;
 // Longitudinal sound speed of the stiffest solids: diamond about 18 km/s.
 constexpr double kFastest = 20000.0;
 
-double steps_for(const Scene& s, const BodySpec& b) {
-  const BodyProperties p = body_properties(b, s.solver, s.dimension);
-  return s.solver.end_time * p.c0 / (s.solver.cfl * p.h);
-}
+// The acoustic estimate of the run's steps: end_time c0 / (CFL h).
+double steps_for(const Scene& s, const BodyProperties& p) { return s.solver.end_time * p.c0 / (s.solver.cfl * p.h); }
 
 std::string speed(double c) {
   std::ostringstream o;
@@ -44,7 +42,9 @@ std::vector<std::string> material_plausibility_warnings(const Scene& scene) {
     const BodySpec& b = scene.bodies[k];
     const double rho = b.material.density;
     const BodyProperties p = body_properties(b, scene.solver, scene.dimension);
-    const bool light = rho<kLightest, dense = rho> kDensest, fast = p.c0 > kFastest;
+    const bool light = rho < kLightest;
+    const bool dense = rho > kDensest;
+    const bool fast = p.c0 > kFastest;
     if (!light && !dense && !fast) continue;
     std::ostringstream w;
     w.precision(6);
@@ -55,13 +55,13 @@ std::vector<std::string> material_plausibility_warnings(const Scene& scene) {
     } else {
       w << "c0 = " << speed(p.c0) << " m/s is faster than sound in any solid (diamond about 18,000 m/s)";
     }
-    w << ". With c0 = " << speed(p.c0) << " m/s the run takes about " << count(std::ceil(steps_for(scene, b)))
-      << " steps";
+    const double steps = steps_for(scene, p);
+    w << ". With c0 = " << speed(p.c0) << " m/s the run takes about " << count(std::ceil(steps)) << " steps";
     if (light && rho > 0.1 && rho < 25) {
       BodySpec si = b;
       si.material.density = rho * 1000;
-      w << ", " << std::round(steps_for(scene, b) / steps_for(scene, si)) << "x what it takes at " << rho * 1000
-        << " kg/m^3";
+      w << ", " << std::round(steps / steps_for(scene, body_properties(si, scene.solver, scene.dimension)))
+        << "x what it takes at " << rho * 1000 << " kg/m^3";
     }
     w << " (check the density in kg/m^3 and the moduli in Pa; \"units\": \"nondimensional\" for a scene in other "
          "units)";
