@@ -1,7 +1,7 @@
 // mfsd command-line interface:
 //   mfsd run [SCENE] [-o DIR] [--backend cpu|cuda] [--threads N] [--precision float|double]
 //            [--set path=value]... [--max-steps N] [--quiet] [--restart DIR] [--checkpoint-every MIN]
-//   mfsd check SCENE [--set path=value]...
+//   mfsd check SCENE [--set path=value]... [--recipe]
 //   mfsd decompose SCENE --ranks N [--set path=value]...
 //   mfsd --version | --help
 // Exit codes: 0 success, 2 bad input, 3 numerical failure, 130 / 143 interrupted
@@ -25,6 +25,7 @@
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_error.hpp"
 #include "host/scene/scene_reader.hpp"
+#include "host/solver/step_recipes.hpp"
 #include "host/version.hpp"
 
 using namespace mfsd;
@@ -37,7 +38,8 @@ const char* kUsage =
     "\n"
     "usage:\n"
     "  mfsd run [SCENE.json] [options]   run a scene (without SCENE: the built-in oscillating plate)\n"
-    "  mfsd check SCENE.json [--set ..]  validate a scene and print its resolved summary\n"
+    "  mfsd check SCENE.json [--set ..] [--recipe]  validate a scene and print its resolved summary\n"
+    "                                   (--recipe: the step's stages, equations and halo refreshes)\n"
     "  mfsd decompose SCENE.json --ranks N  the scene cut into N parts and each part's halo\n"
     "                          (issue 25's domain decomposition; docs/distributed.md)\n"
     "  mfsd --version                    version, build and available backends\n"
@@ -89,8 +91,8 @@ void print_warnings(const Scene& scene) {
 
 int command_check(int argc, char** argv) {
   cxxopts::Options opts("mfsd check", "validate a scene");
-  opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())("scene", "scene file",
-                                                                                    cxxopts::value<std::string>());
+  opts.add_options()("set", "override", cxxopts::value<std::vector<std::string>>())(
+      "recipe", "print the method's step recipe")("scene", "scene file", cxxopts::value<std::string>());
   opts.parse_positional({"scene"});
   auto r = opts.parse(argc, argv);
   if (!r.count("scene")) throw UsageError("mfsd check: a scene file is required (mfsd check SCENE.json)");
@@ -101,6 +103,7 @@ int command_check(int argc, char** argv) {
   const InitialParticles particles = generate_particles(doc.scene);
   print_warnings(doc.scene);
   std::cout << check_summary(doc, particles);
+  if (r.count("recipe")) std::cout << step_recipe_text(doc.scene, particles);
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include "host/backend/host_memory.hpp"
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
+#include "host/scene/active_potential.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/scene/particle_expressions.hpp"
 #include "host/scene/rigid_body.hpp"
@@ -95,6 +96,9 @@ void fill_body(const BodySpec& body, int dim, const std::string& path, std::vect
     }
 }
 
+void evaluate_program(const Scene& scene, const expr::Program& prog, const std::string& epath, long begin, long end,
+                      const std::vector<Point3>& position, int a, std::vector<Point3>& out);
+
 // Evaluates one expression of x0 y0 z0 (and body b's constants) at every
 // particle of [begin, end) into component `a` of `out`; 'skip' leaves the value.
 void evaluate_particle_expression(const Scene& scene, size_t b, const std::string& text, const std::string& epath,
@@ -109,12 +113,20 @@ void evaluate_particle_expression(const Scene& scene, size_t b, const std::strin
   } catch (const expr::ExpressionError& e) {
     throw SceneError(epath + ": " + e.what());
   }
+  evaluate_program(scene, prog, epath, begin, end, position, a, out);
+}
+
+// The same with a compiled program of x0 y0 z0 first (the particle
+// variables' order, particle_expressions.hpp, or x0 y0 z0 alone).
+void evaluate_program(const Scene& scene, const expr::Program& prog, const std::string& epath, long begin, long end,
+                      const std::vector<Point3>& position, int a, std::vector<Point3>& out) {
   const auto view = prog.host_view<double>();
   for (long i = begin; i < end; ++i) {
     const Point3& x = position[size_t(i)];
+    double vars[kParticleVariables] = {x[0], x[1], x[2]};
     double value = 0;
     int pc = 0;
-    const expr::Status st = expr::evaluate(view, x.data(), &value, &pc);
+    const expr::Status st = expr::evaluate(view, vars, &value, &pc);
     if (st == expr::Status::skipped) continue;
     if (st != expr::Status::ok)
       throw SceneError(epath + ": " + prog.describe_error(st, pc) + " at x0 = " + point_text(x, scene.dimension));
@@ -443,11 +455,10 @@ void material_directions(const Scene& scene, size_t b, const std::string& path, 
     }
   // A potential that reads t (or the motion) is evaluated each step on the
   // device (host/solver/common/conditions.hpp); this one at set-up.
-  const std::string vpath = path + "/active_stress/potential";
-  if (h.active.enabled &&
-      reads_only_reference_position(compile_particle_expression(h.active.potential, scene, b, vpath))) {
+  const std::string vpath = active_potential_path(b);
+  if (h.active.enabled && !h.active.per_step) {
     std::vector<Point3> vm(P.size(), Point3{0, 0, 0});
-    evaluate_particle_expression(scene, b, h.active.potential, vpath, begin, end, P.position, 0, vm);
+    evaluate_program(scene, active_potential_program(scene, b), vpath, begin, end, P.position, 0, vm);
     for (long i = begin; i < end; ++i) {
       const double t = h.active.tension_per_potential * vm[size_t(i)][0];
       if (!std::isfinite(t))

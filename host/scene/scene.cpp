@@ -51,6 +51,12 @@ bool has_fracture_body(const Scene& scene) {
   return false;
 }
 
+bool has_load_condition(const Scene& scene) {
+  for (const auto& c : scene.conditions)
+    if (c.type != ConditionSpec::Type::velocity) return true;
+  return false;
+}
+
 bool has_holzapfel_ogden_body(const Scene& scene) {
   for (const auto& b : scene.bodies)
     if (b.material.model == MaterialModel::holzapfel_ogden) return true;

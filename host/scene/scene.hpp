@@ -3,6 +3,7 @@
 // No JSON types here: this header is also compiled by nvcc.
 #pragma once
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +11,9 @@
 #include "host/scene/shape.hpp"
 
 namespace mfsd {
+namespace expr {
+class Program;
+}  // namespace expr
 
 // linear_elastic: the hypo-elastic solid of ULSPH (seed 002 eq. 6-8: linear
 // equation of state, Jaumann rate of the shear stress); the others are
@@ -65,6 +69,10 @@ struct ActiveStressSpec {
   std::string potential;             // V_m, expression of x0 y0 z0 and the constants
   double tension_per_potential = 0;  // k (seed 000 eq. 43: -0.5)
   double ramp_time = 0;              // s
+  // Compiled once by the scene reader (active_potential.hpp): the program,
+  // and whether it is evaluated every step (it reads more than x0 y0 z0).
+  std::shared_ptr<const expr::Program> program;
+  bool per_step = false;
 };
 struct HolzapfelOgdenSpec {
   double a = 0, b = 0, af = 0, bf = 0, as = 0, bs = 0, afs = 0, bfs = 0;
@@ -349,6 +357,8 @@ struct Scene {
 
 // Whether some body carries a plastic state.
 bool has_plastic_body(const Scene& scene);
+// Whether some condition is a load (a force, pressure or traction, not a velocity).
+bool has_load_condition(const Scene& scene);
 // Whether some body's material has fracture.
 bool has_fracture_body(const Scene& scene);
 // Some body is Holzapfel-Ogden (the solver then keeps fibre and sheet fields).

@@ -9,6 +9,7 @@
 
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
+#include "host/scene/active_potential.hpp"
 #include "host/scene/body_properties.hpp"
 #include "host/scene/material_plausibility.hpp"
 #include "host/scene/scene_error.hpp"
@@ -272,6 +273,7 @@ Scene read_scene(const Json& doc, Json& resolved, const std::string& base_dir) {
   root.finish();
   if (scene.si_units)
     for (auto& w : material_plausibility_warnings(scene)) scene.warnings.push_back(w);
+  prepare_active_potentials(scene);
   return scene;
 }
 

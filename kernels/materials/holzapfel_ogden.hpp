@@ -20,6 +20,7 @@
 // I1 = tr C + 1 and the directions lie in the plane.
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/material_interface.hpp"
 
 namespace mfsd {
 
@@ -45,8 +46,9 @@ MFSD_HD inline Real exp_energy(Real a, Real b, Real x) {
 template <int D, class Real>
 struct HolzapfelOgdenPoint {
   HolzapfelOgdenParameters<Real> p;
-  Vec<D, Real> f0, s0;  // unit reference directions
-  Real active_tension;  // T_a (eq. 19), 0 for a passive body
+  Vec<D, Real> f0, s0;     // unit reference directions
+  Real active_tension;     // T_a (eq. 19), 0 for a passive body
+  Real reference_modulus;  // longitudinal_modulus at F = I without T_a (the c0 the time step uses)
 
   // I1 of the 3-D C (plane strain adds the unit out-of-plane stretch).
   MFSD_HD static Real first_invariant(const Mat<D, Real>& F) { return ddot(F, F) + Real(3 - D); }
@@ -73,6 +75,21 @@ struct HolzapfelOgdenPoint {
   MFSD_HD Mat<D, Real> kirchhoff(const Mat<D, Real>& F) const {
     return kirchhoff_remainder(F) + mul_transposed(F, F) * shear_coefficient(F);
   }
+
+  // GENOG's split tau = tau_r + c b, c = a exp[b(I1 - 3)] (seed 000 eq. 25).
+  MFSD_HD KirchhoffSplit<D, Real> genog_split(const Mat<D, Real>& F) const {
+    return {kirchhoff_remainder(F), shear_coefficient(F)};
+  }
+
+  // The active stress's work over dt per V0 at the rate L = dF/dt F^{-1}:
+  // tau_a : L dt with tau_a = T_a f (x) f, f = F f0 (eq. 19), so T_a f . L f dt.
+  MFSD_HD Real active_work(const Mat<D, Real>& F, const Mat<D, Real>& L, Real dt) const {
+    const Vec<D, Real> f = F * f0;
+    return dt * active_tension * dot(f, L * f);
+  }
+
+  // The stiffening the time step follows: current over reference longitudinal modulus.
+  MFSD_HD Real stiffening(const Mat<D, Real>& F) const { return longitudinal_modulus(F) / reference_modulus; }
 
   // W per reference volume (eq. 12, passive part; the active stress does
   // work but stores no energy).
@@ -111,20 +128,17 @@ struct HolzapfelOgden {
   const Vec<D, Real>* sheet;   // s0 per particle
   const Real* active_tension;  // k V_m per particle (seed 000 eq. 43), null for a passive body
   Real activation;             // the ramp's factor in [0, 1] at this step's time: T_a = activation k V_m
+  double ramp_time = -1;       // T_a grows over this time (s); < 0: no active stress
 
   MFSD_HD HolzapfelOgdenPoint<D, Real> at(Index i) const {
     return HolzapfelOgdenPoint<D, Real>{p, fibre[i], sheet[i],
-                                        active_tension ? activation * active_tension[i] : Real(0)};
+                                        active_tension ? activation * active_tension[i] : Real(0), reference_modulus};
   }
-};
 
-template <class Material>
-struct IsHolzapfelOgden {
-  static constexpr bool value = false;
-};
-template <int D, class Real>
-struct IsHolzapfelOgden<HolzapfelOgden<D, Real>> {
-  static constexpr bool value = true;
+  // Before a step at time t: T_a = k V_m min(t / ramp_time, 1).
+  void set_time(double t) {
+    if (ramp_time >= 0) activation = Real(ramp_time > 0 ? (t / ramp_time < 1.0 ? t / ramp_time : 1.0) : 1.0);
+  }
 };
 
 }  // namespace mfsd

@@ -6,6 +6,7 @@
 // with c = G J^{-2/d} = G |b|^{-1/d} (seed 000 eq. 25).
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/material_interface.hpp"
 
 namespace mfsd {
 
@@ -29,6 +30,11 @@ struct NeoHookean {
 
   // c = G J^{-2/d} (seed 000 eq. 25, tau_s = c b).
   MFSD_HD Real shear_coefficient(Real J) const { return G * isochoric_factor(J); }
+
+  // The material at particle i: the same at every particle (material_interface.hpp).
+  MFSD_HD const NeoHookean& at(Index) const { return *this; }
+  // GENOG's split tau = tau_r + c b (seed 000 eq. 25).
+  MFSD_HD KirchhoffSplit<D, Real> genog_split(const Mat<D, Real>& F) const { return isotropic_genog_split(*this, F); }
 
   MFSD_HD Mat<D, Real> kirchhoff(const Mat<D, Real>& F) const {
     const Real J = det(F);

@@ -6,6 +6,7 @@
 // SVK materials (formulations.md section 1).
 #pragma once
 #include "kernels/core/mat.hpp"
+#include "kernels/materials/material_interface.hpp"
 
 namespace mfsd {
 
@@ -17,6 +18,11 @@ struct SaintVenantKirchhoff {
 
   MFSD_HD Real volumetric_kirchhoff(Real J) const { return K * J * (J - Real(1)); }
   MFSD_HD Real shear_coefficient(Real J) const { return G * math::pow(J, Real(-2) / Real(D)); }
+
+  // The material at particle i: the same at every particle (material_interface.hpp).
+  MFSD_HD const SaintVenantKirchhoff& at(Index) const { return *this; }
+  // GENOG's split tau = tau_r + c b (seed 000 eq. 25).
+  MFSD_HD KirchhoffSplit<D, Real> genog_split(const Mat<D, Real>& F) const { return isotropic_genog_split(*this, F); }
 
   MFSD_HD Mat<D, Real> green_lagrange(const Mat<D, Real>& F) const {
     Mat<D, Real> E = transpose(F) * F;

@@ -1,9 +1,9 @@
 // Output quantities: von Mises stress, J, energies.
 #pragma once
-#include "kernels/core/owned_only.hpp"
 #include "kernels/core/mat.hpp"
-#include "kernels/materials/holzapfel_ogden.hpp"
+#include "kernels/core/owned_only.hpp"
 #include "kernels/materials/j2_plastic.hpp"
+#include "kernels/materials/material_interface.hpp"
 
 namespace mfsd {
 
@@ -39,20 +39,16 @@ MFSD_HD inline Mat<D, Real> kirchhoff_of(const Material& m, const Mat<D, Real>& 
                                          Index i) {
   if constexpr (IsPlastic<Material>::value)
     return m.kirchhoff(F, state[i]);
-  else if constexpr (IsHolzapfelOgden<Material>::value)
-    return m.at(i).kirchhoff(F);
   else
-    return m.kirchhoff(F);
+    return m.at(i).kirchhoff(F);  // material_interface.hpp
 }
 
 template <int D, class Real, class Material>
 MFSD_HD inline Real strain_energy_of(const Material& m, const Mat<D, Real>& F, const J2State<Real>* state, Index i) {
   if constexpr (IsPlastic<Material>::value)
     return m.strain_energy_density(F, state[i]);
-  else if constexpr (IsHolzapfelOgden<Material>::value)
-    return m.at(i).strain_energy_density(F);
   else
-    return m.strain_energy_density(F);
+    return m.at(i).strain_energy_density(F);
 }
 
 template <int D, class Real, class Material>

@@ -27,6 +27,7 @@
 #include "kernels/core/mat.hpp"
 #include "kernels/materials/holzapfel_ogden.hpp"
 #include "kernels/materials/j2_plastic.hpp"
+#include "kernels/materials/material_interface.hpp"
 #include "kernels/tlsph/damping.hpp"
 #include "kernels/tlsph/genog_neighbor_record.hpp"
 #include "kernels/tlsph/hourglass.hpp"
@@ -52,14 +53,13 @@ struct StressFunctor {
   GenogNeighborRecord<Real>* neighbor_record;  // 3-D genog on the CPU, else null
   J2State<Real>* plastic_state;                // plastic materials, else null
   Real* damping_work;                          // with Kelvin-Voigt damping: its work per V0, else null
-  Real* stiffening = nullptr;                  // Holzapfel-Ogden: current / reference longitudinal modulus
-  Real* active_work = nullptr;                 // Holzapfel-Ogden with active stress: its work on the body per V0
+  Real* stiffening = nullptr;                  // stiffening materials: current / reference longitudinal modulus
+  Real* active_work = nullptr;                 // materials with an active stress: its work on the body per V0
 
   static constexpr bool plastic = IsPlastic<Material>::value;
-  static constexpr bool anisotropic = IsHolzapfelOgden<Material>::value;
   static_assert(!(plastic && std::is_same<Hourglass, HourglassLaplacian>::value),
                 "the Laplacian hourglass form is defined for elastic bodies only (seed 003)");
-  static_assert(!(anisotropic && std::is_same<Hourglass, HourglassLaplacian>::value),
+  static_assert(plastic || IsIsotropic<Material>::value || !std::is_same<Hourglass, HourglassLaplacian>::value,
                 "the Laplacian hourglass form is defined for isotropic elastic bodies only (seed 003)");
 
   MFSD_HD void operator()(Index i) const {
@@ -89,38 +89,29 @@ struct StressFunctor {
         shear_stress[i] = S;
         if (!neighbor_record) inverse_F[i] = F_inv;
       }
-    } else if constexpr (anisotropic) {
-      const auto m = material.at(i);  // f0, s0 and T_a of particle i (seed 000 eq. 17-19)
-      if (stiffening) stiffening[i] = m.longitudinal_modulus(F) / material.reference_modulus;
-      // Work of the active stress on the body over the step, -V0 tau_a : (dF/dt F^{-1}) dt with
-      // tau_a = T_a f (x) f, f = F f0 (seed 000 eq. 19): tau_a : L = T_a f . L f.
-      if (active_work) {
-        const Vec<D, Real> f = F * m.f0;
-        active_work[i] -= Real(2) * half_dt * m.active_tension * dot(f, (dF * F_inv) * f);
-      }
+    } else {
+      // The material at particle i (material_interface.hpp; Holzapfel-Ogden:
+      // f0, s0 and T_a of the particle, seed 000 eq. 17-19).
+      const auto m = material.at(i);
+      using Point = std::decay_t<decltype(m)>;
+      if constexpr (Stiffens<Point>::value)
+        if (stiffening) stiffening[i] = m.stiffening(F);
+      // The active stress's work on the body over the step is -V0 tau_a : (dF/dt F^{-1}) dt.
+      if constexpr (HasActiveWork<Point>::value)
+        if (active_work) active_work[i] -= m.active_work(F, dF * F_inv, Real(2) * half_dt);
       if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
         tau = m.kirchhoff(F) + tau_d;
-      } else {  // genog: tau_s = c b, c = a exp[b(I1 - 3)]; tau_r = tau - c b (seed 000 eq. 25)
-        tau = m.kirchhoff_remainder(F) + tau_d;
-        S = F * m.shear_coefficient(F);  // c b F^{-T} = c F
-        if (correction_in_force) S = S * correction[i];
-        shear_stress[i] = S;
-        if (!neighbor_record) inverse_F[i] = F_inv;
-      }
-    } else if constexpr (std::is_same<Hourglass, HourglassNone>::value) {
-      tau = material.kirchhoff(F) + tau_d;
-    } else {
-      const Real J = det(F);
-      const Real c = material.shear_coefficient(J);
-      const Real tr_b = ddot(F, F);  // tr(F F^T)
-      if constexpr (std::is_same<Hourglass, HourglassLaplacian>::value) {
+      } else if constexpr (std::is_same<Hourglass, HourglassLaplacian>::value) {
+        const Real J = det(F);
+        const Real c = material.shear_coefficient(J);
+        const Real tr_b = ddot(F, F);  // tr(F F^T)
         tau = tau_d;
         tau.add_diagonal(material.volumetric_kirchhoff(J) - zeta / Real(D) * c * tr_b);  // eq. 28
         shear_coefficient[i] = zeta * c;                                                 // eq. 27
-      } else {
-        tau = tau_d;
-        tau.add_diagonal(material.volumetric_kirchhoff(J) - c * tr_b / Real(D));  // seed 000 tau_r
-        S = F * c;                                                                // c b F^{-T} = c F
+      } else {  // genog: tau_s = c b, tau_r = tau - c b (seed 000 eq. 25)
+        const KirchhoffSplit<D, Real> split = m.genog_split(F);
+        tau = split.remainder + tau_d;
+        S = F * split.coefficient;  // c b F^{-T} = c F
         if (correction_in_force) S = S * correction[i];
         shear_stress[i] = S;
         if (!neighbor_record) inverse_F[i] = F_inv;

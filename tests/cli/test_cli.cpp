@@ -154,6 +154,29 @@ TEST_F(Cli, CheckPrintsTheResolvedScene) {
   EXPECT_NE(r.output.find("probe 'tip'"), std::string::npos);
 }
 
+// --recipe: the step's stages with their equations and the ghost fields a
+// distributed run refreshes around them (host/solver/<method>/<method>_recipe.cpp),
+// one recipe per method in a scene of two.
+TEST_F(Cli, CheckPrintsTheStepRecipe) {
+  const Result plain = run("check " + scene());
+  EXPECT_EQ(plain.output.find("step (stages in order"), std::string::npos) << plain.output;
+  const Result t = run("check " + scene() + " --recipe");
+  EXPECT_EQ(t.code, 0) << t.output;
+  EXPECT_NE(t.output.find("tlsph step (stages in order"), std::string::npos) << t.output;
+  EXPECT_NE(t.output.find("deformation_rate"), std::string::npos) << t.output;
+  EXPECT_NE(t.output.find("halo before: velocity acceleration"), std::string::npos) << t.output;
+  EXPECT_NE(t.output.find("halo after: displacement deformation_gradient deformation_rate"), std::string::npos)
+      << t.output;
+  EXPECT_EQ(t.output.find("phase_field"), std::string::npos) << t.output;  // no fracturing body
+  const Result mixed = run("check " + std::string(MFSD_SOURCE_DIR) + "/configs/colliding_rings_mixed_2d.json --recipe");
+  EXPECT_EQ(mixed.code, 0) << mixed.output;
+  EXPECT_NE(mixed.output.find("tlsph step"), std::string::npos) << mixed.output;
+  EXPECT_NE(mixed.output.find("ulsph step"), std::string::npos) << mixed.output;
+  EXPECT_NE(mixed.output.find("halo after: pressure shear_stress velocity_gradient plastic_scale failed"),
+            std::string::npos)
+      << mixed.output;
+}
+
 TEST_F(Cli, MalformedJsonNamesLineAndColumn) {
   expect_input_error("run " + scene("\"dimension\": 2,", "\"dimension\": 2,,") + " -o " + out(),
                      "scene.json:3:18: invalid JSON");

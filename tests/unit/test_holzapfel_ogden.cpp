@@ -26,7 +26,7 @@ Vec<3, double> unit(double x, double y, double z) {
   return Vec<3, double>{{x / n, y / n, z / n}};
 }
 HolzapfelOgdenPoint<3, double> muscle(double Ta = 0) {
-  return {table4(), Vec<3, double>{{1, 0, 0}}, Vec<3, double>{{0, 1, 0}}, Ta};
+  return {table4(), Vec<3, double>{{1, 0, 0}}, Vec<3, double>{{0, 1, 0}}, Ta, 1.0};
 }
 double scale(const HolzapfelOgdenParameters<double>& p) { return p.lambda + p.a + p.af + p.as + p.afs; }
 
@@ -104,24 +104,24 @@ TEST(HolzapfelOgden, StressIsTheDerivativeOfTheEnergy) {
     Vec<3, double> s0 = unit(-0.3, 1, 0.1 + u(rng));
     s0 = s0 - f0 * dot(s0, f0);
     s0 = s0 * (1 / std::sqrt(dot(s0, s0)));
-    const HolzapfelOgdenPoint<3, double> m{p, f0, s0, 0};
+    const HolzapfelOgdenPoint<3, double> m{p, f0, s0, 0, 1.0};
     test::expect_energy_consistent<3>(m, F, 1e-7, 2e-6 * scale(p));
   }
   // b = 0 and b_f = 0 (seed 000 Table 3): the limits a x / 2 of the energy.
   p.b = 0;
   p.bf = 0;
-  const HolzapfelOgdenPoint<3, double> m{p, unit(0, 0, 1), unit(1, 0, 0), 0};
+  const HolzapfelOgdenPoint<3, double> m{p, unit(0, 0, 1), unit(1, 0, 0), 0, 1.0};
   test::expect_energy_consistent<3>(m, Mat<3, double>{{{1.1, 0.05, 0}, {0, 0.95, 0.1}, {0.02, 0, 1.2}}}, 1e-7,
                                     2e-6 * scale(p));
   // Plane strain: in-plane fibres, I1 = tr C + 1.
-  const HolzapfelOgdenPoint<2, double> m2{table4(), Vec<2, double>{{0.6, 0.8}}, Vec<2, double>{{-0.8, 0.6}}, 0};
+  const HolzapfelOgdenPoint<2, double> m2{table4(), Vec<2, double>{{0.6, 0.8}}, Vec<2, double>{{-0.8, 0.6}}, 0, 1.0};
   test::expect_energy_consistent<2>(m2, Mat<2, double>{{{1.08, 0.1}, {-0.05, 0.93}}}, 1e-7, 2e-6 * scale(p));
 }
 
 // Work = sum P : dF along a path out and back (midpoint rule, 4000 steps per
 // leg) returns to zero, and equals W at the turning point.
 TEST(HolzapfelOgden, EnergyEqualsWorkOverALoadUnloadCycle) {
-  const HolzapfelOgdenPoint<3, double> m{table4(), unit(1, 1, 0), unit(-1, 1, 0.5), 0};
+  const HolzapfelOgdenPoint<3, double> m{table4(), unit(1, 1, 0), unit(-1, 1, 0.5), 0, 1.0};
   const Mat<3, double> target{{{1.2, 0.1, 0}, {0.05, 0.9, 0.1}, {0, -0.1, 1.05}}};
   auto F_at = [&](double s) { return Mat<3, double>::identity() + (target - Mat<3, double>::identity()) * s; };
   const int n = 4000;
@@ -143,7 +143,7 @@ TEST(HolzapfelOgden, EnergyEqualsWorkOverALoadUnloadCycle) {
 
 // tau(QF) = Q tau(F) Q^T with the same reference fibres: they turn with F.
 TEST(HolzapfelOgden, Objectivity) {
-  const HolzapfelOgdenPoint<3, double> m{table4(), unit(1, 0.2, 0.1), unit(-0.2, 1, 0), 1.5};
+  const HolzapfelOgdenPoint<3, double> m{table4(), unit(1, 0.2, 0.1), unit(-0.2, 1, 0), 1.5, 1.0};
   const Mat<3, double> F{{{1.1, 0.05, 0.02}, {-0.03, 0.95, 0.1}, {0.04, 0, 1.08}}};
   const Mat<3, double> Q = test::rotation(Point3{0.3, -0.5, 0.8}, 1.1);
   const Mat<3, double> expected = mul_transposed(Q * m.kirchhoff(F), Q);
@@ -153,7 +153,7 @@ TEST(HolzapfelOgden, Objectivity) {
 }
 
 TEST(HolzapfelOgden, GenogSplitAddsUpToTheStress) {
-  const HolzapfelOgdenPoint<3, double> m{table4(), unit(0, 1, 1), unit(1, 0, 0), -2.0};
+  const HolzapfelOgdenPoint<3, double> m{table4(), unit(0, 1, 1), unit(1, 0, 0), -2.0, 1.0};
   const Mat<3, double> F{{{1.05, 0.1, 0}, {0, 0.9, -0.05}, {0.1, 0, 1.1}}};
   const double c = m.shear_coefficient(F);
   EXPECT_NEAR(c, m.p.a * std::exp(m.p.b * (ddot(F, F) - 3)), 1e-15);
@@ -167,7 +167,7 @@ TEST(HolzapfelOgden, GenogSplitAddsUpToTheStress) {
 // fibre, magnitude T_a |F f0|^2; nothing across it.
 TEST(HolzapfelOgden, ActiveStressDirectionAndMagnitude) {
   const Vec<3, double> f0 = unit(1, 1, 0);
-  const HolzapfelOgdenPoint<3, double> passive{table4(), f0, unit(-1, 1, 0), 0};
+  const HolzapfelOgdenPoint<3, double> passive{table4(), f0, unit(-1, 1, 0), 0, 1.0};
   HolzapfelOgdenPoint<3, double> active = passive;
   active.active_tension = -15.0;  // T_a = -0.5 V_m at V_m = 30 mV
   const Mat<3, double> F{{{1.1, 0.2, 0}, {0, 0.95, 0}, {0, 0.1, 1.02}}};

@@ -15,6 +15,7 @@
 #include "host/backend/device_results.hpp"
 #include "host/expr/expression_error.hpp"
 #include "host/expr/program.hpp"
+#include "host/scene/active_potential.hpp"
 #include "host/scene/particle_expressions.hpp"
 #include "host/scene/particle_generator.hpp"
 #include "host/scene/scene_error.hpp"
@@ -70,9 +71,9 @@ class Conditions {
     for (size_t b = 0; b < scene.bodies.size(); ++b) {
       const MaterialSpec& mat = scene.bodies[b].material;
       if (mat.model != MaterialModel::holzapfel_ogden || !mat.holzapfel_ogden.active.enabled) continue;
-      const std::string path = "/bodies/" + std::to_string(b) + "/material/active_stress/potential";
-      expr::Program p = compile_particle_expression(mat.holzapfel_ogden.active.potential, scene, b, path);
-      if (reads_only_reference_position(p)) continue;  // evaluated at set-up (particle_generator.cpp)
+      if (!mat.holzapfel_ogden.active.per_step) continue;  // evaluated at set-up (particle_generator.cpp)
+      const std::string path = active_potential_path(b);
+      expr::Program p = active_potential_program(scene, b);  // compiled by the scene reader
       auto a = std::make_unique<ActivePotential>();
       a->body = b;
       a->path = path;

@@ -5,8 +5,11 @@
 // planes, the stage runner with its clocks, the numerical-failure report,
 // snapshots as named fields, and the Solver interface's bookkeeping (time,
 // steps, next dt, timers, set-up report, checkpoints of the shared parts).
-// A method (host/solver/<method>/) derives from it, adds its own fields and
-// stages, and registers its output fields in snapshot_fields_.
+// A method (host/solver/<method>/) derives from it, adds its own fields,
+// gives its step recipe (<method>_recipe.cpp: the stages with their
+// equations and halo refreshes, which run() reads), fills the step's
+// method stages (forces, advance, finish_step) and registers its output
+// fields in snapshot_fields_.
 // Include after the backend header.
 #pragma once
 #include <algorithm>
@@ -24,6 +27,7 @@
 #include <vector>
 
 #include "host/backend/device_results.hpp"
+#include "host/backend/round_trips.hpp"
 #include "host/halo/halo_check.hpp"
 #include "host/particles/field_names.hpp"
 #include "host/particles/particle_set.hpp"
@@ -32,6 +36,7 @@
 #include "host/solver/common/conditions.hpp"
 #include "host/solver/common/contact.hpp"
 #include "host/solver/common/kinematics.hpp"
+#include "host/solver/common/step_recipe.hpp"
 #include "host/solver/numerical_failure.hpp"
 #include "host/solver/solver.hpp"
 #include "host/solver/stage_run.hpp"
@@ -56,8 +61,40 @@ class ParticleSolver : public Solver {
     begin_step();
     end_step();
   }
-  virtual void begin_step() = 0;
-  virtual void end_step() = 0;
+  // The skeleton every method's step shares (docs/architecture.md, "Step
+  // recipes"): the method's stages up to its forces, then the contact.
+  virtual void begin_step() {
+    round_trips_before_ = round_trips();
+    const double dt = step_dt_ = dt_next_;
+    results_.clear();
+    forces(dt);
+    if (contact_.enabled()) {
+      before_contact();
+      run("contact", [&] {
+        prepare_contact();
+        contact_.apply(step_kinematics(), time_, dt, results_);
+      });
+    }
+  }
+  // The loads, the boundary conditions, the method's advance and the step's
+  // one synchronisation, whose results the method reads in finish_step().
+  virtual void end_step() {
+    const double dt = step_dt_;
+    const Kinematics<D, Real> k = step_kinematics();
+    if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
+    run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
+    advance(dt);
+    run("time_step", [&] {
+      results_.fetch();
+      conditions_.collect(results_, k);
+      contact_.collect(results_);
+      time_ += dt;
+      ++steps_;
+      finish_step(dt);
+    });
+    clock_.collect(timers_);
+    timers_.add_round_trips(round_trips() - round_trips_before_);
+  }
   // The fields the contact between two solvers reads and changes, and the
   // candidates this solver offers it (scene.contact's bodies).
   Kinematics<D, Real> contact_view() { return kinematics(); }
@@ -206,36 +243,62 @@ class ParticleSolver : public Solver {
                                ghost_flags()};
   }
 
-  // One timed stage; a device error names it (backend_error.hpp), and in
-  // the checked mode (MFSD_CUDA_SYNC_CHECK=1) the stage ends with a
-  // synchronisation so that its kernels' faults are found in it.
+  // One timed stage of the recipe; a device error names it
+  // (backend_error.hpp), and in the checked mode (MFSD_CUDA_SYNC_CHECK=1) the
+  // stage ends with a synchronisation so that its kernels' faults are found
+  // in it. Distributed runs refresh the ghosts' fields the recipe names
+  // before and after the stage (step_recipe.hpp).
   template <class F>
   void run(const char* name, F&& f) {
+    const StageRecipe* stage = ghosts_ ? recipe_.find(name) : nullptr;
+    if (stage && !stage->refresh_before.empty()) refresh_halo(stage->refresh_before);
     const int id = timers_.id(name);
     clock_.start(id);
     run_stage<B>(name, stage_names_, std::forward<F>(f));
     clock_.stop(id, timers_);
+    if (stage && !stage->refresh_after.empty()) refresh_halo(stage->refresh_after);
   }
 
-  // Registers a stage for the timers and the device-error messages.
-  void declare_stage(const char* name) {
-    timers_.id(name);
-    stage_names_ += (stage_names_.empty() ? "" : ", ") + std::string(name);
+  // The method's recipe: its stages registered for the timers and the
+  // device-error messages, in the recipe's order.
+  void set_recipe(StepRecipe recipe) {
+    recipe_ = std::move(recipe);
+    for (const StageRecipe& s : recipe_.stages())
+      if (s.present) {
+        timers_.id(s.name.c_str());
+        stage_names_ += (stage_names_.empty() ? "" : ", ") + s.name;
+      }
+    has_loads_ = has_load_condition(scene_);
   }
+  const StepRecipe& recipe() const { return recipe_; }
+
+  // The method's stages of a step (begin_step, end_step): up to the forces
+  // (before the contact), the advance after the boundary conditions, and
+  // the host's part of the step's synchronisation (its time step).
+  virtual void forces(double dt) = 0;
+  virtual void advance(double dt) = 0;
+  virtual void finish_step(double dt) = 0;
+  // Before the contact stage (outside its clock; distributed checks), and
+  // inside it before the contact's forces.
+  virtual void before_contact() {}
+  virtual void prepare_contact() {}
+  // The fields the conditions and the contact act on.
+  virtual Kinematics<D, Real> step_kinematics() { return kinematics(); }
+
+  // A distributed run's refresh of the ghosts' copies of these fields, timed
+  // as the stage "halo".
+  void refresh_halo(const std::vector<std::string>& names) {
+    run("halo", [&] { refresh_stage_ghosts(names); });
+  }
+  // A method whose fields hold particle indices translates them around the
+  // exchange (RKPM's Kronecker nodes).
+  virtual void refresh_stage_ghosts(const std::vector<std::string>& names) { refresh_ghosts(names); }
 
   virtual bool ghosts_supported() const { return false; }
 
   // Distributed runs: the send and receive indices of the ghost exchange in
   // the solver's order, once the set-up has reordered the particles.
-  void bind_ghosts() {
-    if (!ghosts_) return;
-    const std::vector<Index> where = locate();
-    std::vector<Index> send, receive;
-    for (long id : ghosts_->send_ids()) send.push_back(where[size_t(id)]);
-    for (long id : ghosts_->receive_ids()) receive.push_back(where[size_t(id)]);
-    from_host<B>(send, ghost_send_index_);
-    from_host<B>(receive, ghost_receive_index_);
-  }
+  void bind_ghosts();
 
   // Distributed runs: the ghosts' copies of these fields (those registered)
   // from their owners, in one message per pair of ranks (each rank's block
@@ -245,51 +308,8 @@ class ParticleSolver : public Solver {
   }
   // Every field but the local ids and the ghost flags (a method whose passes
   // read partners' fields in many places: ULSPH).
-  void refresh_all_ghosts() {
-    if (!ghosts_) return;
-    std::vector<std::string> names;
-    for (const std::string& name : particles_.field_names())
-      if (name != field::id && name != field::ghost && name != field::reference_position_double) names.push_back(name);
-    refresh_ghosts(names);
-  }
-  void refresh_ghosts(const std::vector<std::string>& names) {
-    if (!ghosts_) return;
-    std::vector<std::string> fields;
-    std::vector<std::vector<char>> packed;
-    std::vector<size_t> size;  // bytes per element
-    for (const std::string& name : names)
-      if (particles_.has(name)) {
-        fields.push_back(name);
-        packed.push_back(particles_.pack(name, ghost_send_index_));
-        size.push_back(particles_.element_bytes(name));
-      }
-    if (fields.empty()) return;
-    size_t record = 0;
-    for (size_t s : size) record += s;
-    const std::vector<int>& sends = ghosts_->send_counts();
-    const std::vector<int>& receives = ghosts_->receive_counts();
-    std::vector<char> message;
-    message.reserve(ghosts_->send_ids().size() * record);
-    size_t first = 0;  // the rank's first element in send order
-    for (int count : sends) {
-      for (size_t f = 0; f < fields.size(); ++f) {
-        const char* p = packed[f].data() + first * size[f];
-        message.insert(message.end(), p, p + size_t(count) * size[f]);
-      }
-      first += size_t(count);
-    }
-    std::vector<char> received;
-    ghosts_->exchange(message, record, received);
-    std::vector<std::vector<char>> unpacked(fields.size());
-    for (size_t f = 0; f < fields.size(); ++f) unpacked[f].reserve(ghosts_->receive_ids().size() * size[f]);
-    const char* p = received.data();
-    for (int count : receives)
-      for (size_t f = 0; f < fields.size(); ++f) {
-        unpacked[f].insert(unpacked[f].end(), p, p + size_t(count) * size[f]);
-        p += size_t(count) * size[f];
-      }
-    for (size_t f = 0; f < fields.size(); ++f) particles_.unpack(fields[f], ghost_receive_index_, unpacked[f]);
-  }
+  void refresh_all_ghosts();
+  void refresh_ghosts(const std::vector<std::string>& names);
 
   // Distributed runs of methods whose particles move through the cut (ULSPH;
   // docs/distributed.md, "Migration"): every field of each owned particle
@@ -299,99 +319,13 @@ class ParticleSolver : public Solver {
   // that every row still sums its neighbours in that run's order. Then the
   // exchange plan, the lists of the conditions, probes and planes follow,
   // and after_migration() re-binds what the method keeps by index.
-  void migrate_particles(double radius) {
-    const Index n = particles_.size();
-    const auto ghost = to_host<B>(particles_.template buffer<unsigned char>(field::ghost));
-    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
-    const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
-    const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
-    std::vector<Index> owned_index;
-    std::vector<long> owned;
-    std::vector<std::array<double, 3>> position;
-    for (Index i = 0; i < n; ++i)
-      if (!ghost[size_t(i)]) {
-        owned_index.push_back(i);
-        owned.push_back(long(ids[size_t(i)]));
-        std::array<double, 3> x{0, 0, 0};
-        for (int a = 0; a < D; ++a) x[size_t(a)] = double(X[size_t(i)].v[a] + u[size_t(i)].v[a]);
-        position.push_back(x);
-      }
-    // One record per owned particle: its fields one after the other (the
-    // same names, in the same order, on every rank).
-    std::vector<std::string> names;
-    for (const std::string& name : particles_.field_names())
-      if (name != field::id && name != field::ghost) names.push_back(name);
-    std::vector<size_t> offset, size;
-    size_t record = 0;
-    for (const std::string& name : names) {
-      offset.push_back(record);
-      size.push_back(particles_.element_bytes(name));
-      record += size.back();
-    }
-    DeviceVector<B, Index> pick;
-    from_host<B>(owned_index, pick);
-    std::vector<char> records(owned.size() * record);
-    for (size_t f = 0; f < names.size(); ++f) {
-      const std::vector<char> packed = particles_.pack(names[f], pick);
-      for (size_t k = 0; k < owned.size(); ++k)
-        std::memcpy(records.data() + k * record + offset[f], packed.data() + k * size[f], size[f]);
-    }
-    GhostExchange::Arrivals in = ghosts_->migrate(owned, position, records, record, radius);
-
-    // The arrivals into the fields, then into the single-process order.
-    const Index m = Index(in.global_id.size());
-    particles_.resize(m);
-    DeviceVector<B, Index> all;
-    all.resize(size_t(m));
-    sequence<B, Index>(all);
-    for (size_t f = 0; f < names.size(); ++f) {
-      std::vector<char> bytes(size_t(m) * size[f]);
-      for (size_t k = 0; k < size_t(m); ++k)
-        std::memcpy(bytes.data() + k * size[f], in.records.data() + k * record + offset[f], size[f]);
-      particles_.unpack(names[f], all, bytes);
-    }
-    const auto body = to_host<B>(particles_.template buffer<int>(field::body));
-    const auto key = to_host<B>(particles_.template buffer<std::int64_t>(field::order_key));
-    std::vector<Index> order(static_cast<size_t>(m));
-    std::iota(order.begin(), order.end(), Index(0));
-    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
-      return std::make_tuple(body[size_t(a)], key[size_t(a)], in.global_id[size_t(a)]) <
-             std::make_tuple(body[size_t(b)], key[size_t(b)], in.global_id[size_t(b)]);
-    });
-    DeviceVector<B, Index> perm;
-    from_host<B>(order, perm);
-    particles_.permute(perm);
-    std::vector<long> global(static_cast<size_t>(m));
-    for (size_t k = 0; k < size_t(m); ++k) global[k] = in.global_id[size_t(order[k])];
-    ghosts_->adopt(global);
-
-    follow_membership();
-  }
+  void migrate_particles(double radius);
 
   // After this rank's particles changed (a migration, or a checkpoint of
   // migrated particles restored): local ids are the positions, the ghost
   // flags the exchange's; the body ranges, the lists of the conditions,
   // probes and planes, the exchange's indices and the method's own follow.
-  void follow_membership() {
-    sequence<B, Index>(particles_.template buffer<Index>(field::id));
-    from_host<B>(ghosts_->ghost_mask(), particles_.template buffer<unsigned char>(field::ghost));
-    const auto body = to_host<B>(particles_.template buffer<int>(field::body));
-    for (size_t b = 0; b < ranges_.size(); ++b) {
-      const auto lo = std::lower_bound(body.begin(), body.end(), int(b));
-      const auto hi = std::upper_bound(body.begin(), body.end(), int(b));
-      ranges_[b] = BodyRange{Index(lo - body.begin()), Index(hi - body.begin())};
-    }
-    const InitialParticles& lists = ghosts_->lists();
-    init_.probe_particles = lists.probe_particles;
-    init_.clamp_particles = lists.clamp_particles;
-    init_.measure_particles = lists.measure_particles;
-    init_.condition_particles = lists.condition_particles;
-    bind_ghosts();
-    const std::vector<Index> where = locate();
-    conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
-    locate_probes(where);
-    after_migration();
-  }
+  void follow_membership();
 
  public:
   void expect_particles(long n) override {
@@ -416,36 +350,13 @@ class ParticleSolver : public Solver {
   }
 
   // Distributed runs: the time step's statistics over the whole scene.
-  void maxima_over_ranks(StepStatistics<Real>& s) {
-    if (!ghosts_) return;
-    std::vector<double> v{double(s.max_speed2), double(s.max_acceleration2), double(s.max_inverse_stretch),
-                          double(s.max_stiffening)};
-    ghosts_->max_over_ranks(v);
-    s.max_speed2 = Real(v[0]), s.max_acceleration2 = Real(v[1]);
-    s.max_inverse_stretch = Real(v[2]), s.max_stiffening = Real(v[3]);
-  }
+  void maxima_over_ranks(StepStatistics<Real>& s);
 
   // MFSD_VERIFY_HALO=1 (test only; host/halo/halo_check.hpp): every
   // particle within `support` (per body of the owned particle) of an owned
   // particle at the positions x, of its own body or (across_bodies) of any,
   // is held by this rank; else the run stops with the missing pair.
-  void verify_halo(const std::vector<Vec<D, Real>>& x, const std::vector<double>& support, bool across_bodies) {
-    const auto ids = to_host<B>(particles_.template buffer<Index>(field::id));
-    std::vector<long> global;
-    std::vector<std::array<double, 3>> position;
-    for (size_t i = 0; i < ids.size(); ++i) {
-      global.push_back(ghosts_->global_id(long(ids[i])));
-      std::array<double, 3> p{0, 0, 0};
-      for (int a = 0; a < D; ++a) p[size_t(a)] = double(x[i].v[a]);
-      position.push_back(p);
-    }
-    const std::string missing = distributed::missing_partner(
-        *ghosts_, global, to_host<B>(particles_.template buffer<unsigned char>(field::ghost)),
-        to_host<B>(particles_.template buffer<int>(field::body)), position, support, D, across_bodies);
-    if (!missing.empty())
-      throw std::logic_error(std::string("distributed ") + to_string(scene_.solver.method) +
-                             " halo incomplete at step " + std::to_string(steps_) + ": " + missing);
-  }
+  void verify_halo(const std::vector<Vec<D, Real>>& x, const std::vector<double>& support, bool across_bodies);
 
   // The owned particles among [begin, end) (all of them in a single-process run).
   Index owned_in(Index begin, Index end) {
@@ -735,6 +646,8 @@ class ParticleSolver : public Solver {
   StageTimers timers_;
   DeviceResults<B> results_;  // the step's sums until its one synchronisation
   std::string stage_names_;   // the stages of a step, for deferred device errors
+  StepRecipe recipe_;
+  bool has_loads_ = false;  // some condition is a load (the loads stage runs)
   SetupReport report_;
   double time_ = 0, dt_next_ = 0;
   long steps_ = 0;
@@ -747,3 +660,5 @@ class ParticleSolver : public Solver {
 };
 
 }  // namespace mfsd
+
+#include "host/solver/common/particle_solver_distributed.hpp"

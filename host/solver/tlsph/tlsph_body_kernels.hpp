@@ -53,9 +53,8 @@ struct BodyKernelSettings {
   GenogLimiter genog_limiter;
   GenogForm genog_form;
   double genog_alpha;
-  double damping_normal;         // factor rho0 h c0 / 2
-  double damping_shear;          // factor rho0 h c / 2 on off-diagonal components
-  double active_ramp_time = -1;  // Holzapfel-Ogden active stress: T_a grows over this time; < 0: none
+  double damping_normal;  // factor rho0 h c0 / 2
+  double damping_shear;   // factor rho0 h c / 2 on off-diagonal components
 };
 
 template <class B, int D, class Real, class Material, class Hourglass>
@@ -64,10 +63,7 @@ class BodyKernelsImpl : public BodyKernels<B, D, Real> {
   BodyKernelsImpl(const Material& m, const BodyKernelSettings& s) : material_(m), s_(s) {}
 
   void prepare_step(double t) override {
-    if constexpr (IsHolzapfelOgden<Material>::value) {
-      if (s_.active_ramp_time >= 0)  // T_a = k V_m min(t / ramp_time, 1)
-        material_.activation = Real(s_.active_ramp_time > 0 ? std::min(t / s_.active_ramp_time, 1.0) : 1.0);
-    }
+    if constexpr (IsTimeDependent<Material>::value) material_.set_time(t);  // material_interface.hpp
   }
 
   void stress(const TlsphViews<D, Real>& v, Real half_dt) const override {

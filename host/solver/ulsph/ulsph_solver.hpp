@@ -1,19 +1,10 @@
 // Updated-Lagrangian SPH solver with generalized non-hourglass control
 // (seed 002; formulations.md section 3) for one backend, precision and
-// dimension. One call of step() is one acoustic step:
-//   neighbors    at the start of an advection step: x = X + u, cell sort,
-//                CSR with the current pair data (V = m/rho), B   (eq. 20-21)
-//   half_step    rho and u to the half step                     (eq. 30, 14)
-//   stress       p (linear EOS, tension failure), L, Jaumann tau with the
-//                J2 return and kappa                             (eq. 6-12)
-//   force        a = pressure + Riemann + shear + GNOG + g, v += dt a
-//                                                            (eq. 15-18, 27-29, 31)
-//   contact, loads, boundary   the shared services (host/solver/common/)
-//   advance      rho and u through the second half at the new v (eq. 32),
-//                reduced to the step's maxima and health check
-//   time_step    the step's one synchronisation; dual-criteria time step:
-//                dt_adv = C_adv h / max(U_ref, |v|max), dt_ac = CFL h / (c0 + |v|max)
-//                (eq. 28-29), acoustic steps until dt_adv is covered
+// dimension. One call of step() is one acoustic step of the recipe in
+// ulsph_recipe.cpp (the stages, their equations and halo refreshes) on the
+// current-configuration skeleton (current_configuration_solver.hpp):
+// half_step, [migrate, neighbors], half_step, stress, force, contact,
+// loads, boundary, advance, time_step.
 // Bodies are ranges of one particle set; pairs join particles of one body
 // only, bodies meet by contact. Positions are displacements from the initial
 // positions (kinematics.hpp). Include after the backend header.
@@ -34,7 +25,8 @@
 #include "host/halo/halo_check.hpp"
 #include "host/halo/halo_radius.hpp"
 #include "host/neighbors/cell_list_search.hpp"
-#include "host/solver/common/particle_solver.hpp"
+#include "host/solver/common/current_configuration_solver.hpp"
+#include "host/solver/ulsph/ulsph_recipe.hpp"
 #include "kernels/core/owned_only.hpp"
 #include "kernels/core/step_statistics.hpp"
 #include "kernels/neighbors/bounding_box.hpp"
@@ -45,225 +37,100 @@
 namespace mfsd {
 
 template <class B, int D, class Real>
-class UlsphSolver final : public ParticleSolver<B, D, Real> {
-  using Base = ParticleSolver<B, D, Real>;
+class UlsphSolver final : public CurrentConfigurationSolver<B, D, Real> {
+  using Base = CurrentConfigurationSolver<B, D, Real>;
+  using Base::acceleration, Base::displacement, Base::mat, Base::real, Base::reference, Base::velocity;
+  using Base::body_total_, Base::cells_, Base::count_, Base::gravity_at_start_, Base::migration_travelled_,
+      Base::neighbor_, Base::offsets_, Base::pairs_, Base::rebuild_due_, Base::search_;
   using Base::conditions_, Base::contact_, Base::dt_next_, Base::init_, Base::particles_, Base::ranges_, Base::report_,
       Base::results_, Base::scene_, Base::snapshot_fields_, Base::steps_, Base::time_;
-  using Base::declare_stage, Base::props, Base::run;
+  using Base::props, Base::run;
 
  public:
   UlsphSolver(const Scene& scene, const InitialParticles& init, const SolverOptions& options)
       : Base(scene, init, options) {
-    for (const auto& c : scene.conditions) has_loads_ = has_loads_ || c.type != ConditionSpec::Type::velocity;
-    for (const char* name :
-         {"neighbors", "half_step", "stress", "force", "contact", "loads", "boundary", "advance", "time_step"})
-      if ((has_loads_ || std::string(name) != "loads") && (scene.contact.enabled || std::string(name) != "contact"))
-        declare_stage(name);
+    this->set_recipe(ulsph_recipe(scene));
     conditions_.compile(scene_);
   }
 
-  void initialize() override {
-    const Index n = particles_.size();
-    this->upload_kinematics();
-    // State: rho = rho0, m = rho0 V0, tau = 0, a_h = 0; the stage fields.
-    std::vector<Real> density(static_cast<size_t>(n)), mass(static_cast<size_t>(n));
-    for (size_t b = 0; b < scene_.bodies.size(); ++b)
-      for (Index i = ranges_[b].begin; i < ranges_[b].end; ++i) {
-        density[size_t(i)] = Real(scene_.bodies[b].material.density);
-        mass[size_t(i)] = Real(scene_.bodies[b].material.density * init_.volume[size_t(i)]);
-      }
-    particles_.template add<Real>(field::density);
-    from_host<B>(density, particles_.template buffer<Real>(field::density));
-    particles_.template add<Real>(field::mass);
-    from_host<B>(mass, particles_.template buffer<Real>(field::mass));
-    if (scene_.solver.ulsph.refresh_pairs) particles_.template add<Real>(field::current_volume);
-    particles_.template add<Real>(field::pair_density);
-    particles_.template add<Vec<D, Real>>(field::acceleration);
-    particles_.template add<Real>(field::pressure);
-    particles_.template add<Mat<D, Real>>(field::shear_stress);
-    particles_.template add<Mat<D, Real>>(field::correction_matrix);
-    particles_.template add<Mat<D, Real>>(field::velocity_gradient);
-    particles_.template add<Vec<D, Real>>(field::current_position);
-    particles_.template add<Real>(field::von_mises);
-    particles_.template add<Real>(field::jacobian);
-    if (scene_.solver.hourglass != HourglassControl::none)
-      particles_.template add<Vec<D, Real>>(field::hourglass_acceleration);
-    particles_.template add<Real>(field::dissipated_work);                 // zero
-    particles_.template add<Vec<D, Real>>(field::numerical_acceleration);  // a_num of the step
-    if (has_plastic_body(scene_)) {
-      particles_.template add<Real>(field::plastic_work);    // zero
-      particles_.template add<Real>(field::plastic_strain);  // a, the accumulated plastic strain
-      particles_.template add<Real>(field::plastic_scale);
-      Real* kappa = particles_.template get<Real>(field::plastic_scale);
-      thrust::fill(BackendTraits<B>::policy(), kappa, kappa + n, Real(1));
-    }
-    bool failure = false;
-    for (const auto& b : scene_.bodies) failure = failure || b.material.failure_pressure > 0;
-    if (failure) particles_.template add<unsigned char>(field::failed);
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) search_.push_back(BodySearch{ranges_[b], props(b).h});
+  void initialize() override;
 
-    // The first search sorts the particles by cell and, with solver.reorder,
-    // permutes every field into that order (memory locality for the run);
-    // later rebuilds keep the order and search through the cell order.
-    for (size_t b = 0; b < scene_.bodies.size(); ++b)
-      body_total_.push_back(double(this->owned_in(ranges_[b].begin, ranges_[b].end)));
-    if (this->ghosts_) this->ghosts_->sum_over_ranks(body_total_);  // the cell grid of the whole body
-    boxes_ = host_boxes();
-    globalize_boxes();
-    rebuild(scene_.solver.reorder);
-    particles_.remove(field::reference_position_double);
-    if (this->ghosts_) {  // each particle's place in the single-process order (migrate_particles)
-      particles_.template add<std::int64_t>(field::order_key);
-      if (scene_.solver.reorder)
-        thrust::copy(BackendTraits<B>::policy(), cells_.keys.begin(), cells_.keys.end(),
-                     particles_.template buffer<std::int64_t>(field::order_key).begin());
-    }
-    // Distributed runs: the exchange in the sorted order, and the ghosts'
-    // B and pair densities (their rows are cut) from their owners.
-    this->bind_ghosts();
-    this->refresh_all_ghosts();
-
-    snapshot_fields_ = {{"von_mises", field::von_mises},
-                        {"J", field::jacobian},
-                        {"pressure", field::pressure},
-                        {"density", field::density}};
-    if (particles_.has(field::plastic_strain)) snapshot_fields_.emplace_back("plastic_strain", field::plastic_strain);
-    if (particles_.has(field::failed)) {
-      particles_.template add<Real>(field::failed_output);
-      snapshot_fields_.emplace_back("failed", field::failed_output);
-    }
-
-    const std::vector<Index> where = this->locate();
-    conditions_.setup(init_, where, particles_.template get<Index>(field::id), ranges_);
-    if (scene_.contact.enabled) {
-      // Every particle of a body in contact is a candidate: its surface moves.
-      this->setup_contact(std::vector<unsigned char>(size_t(n), 1));
-    }
-    this->locate_probes(where);
-    results_.clear();
-    conditions_.apply_initial(this->kinematics(), results_);
-    results_.fetch();
-    conditions_.collect(results_, this->kinematics());
-    this->refresh_all_ghosts();
-
-    // Initial stress (rho = rho0: p = 0, tau = 0) and the first time step.
-    for (size_t b = 0; b < scene_.bodies.size(); ++b) gravity_at_start_.push_back(energy(b).gravity);
-    StepStatistics<Real> stats =
-        transform_reduce<B>(0, n, statistics_functor(), StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
-                            StepStatisticsCombine<Real>{});
-    this->maxima_over_ranks(stats);  // distributed runs: the whole scene's
-    advection_step_ = advection_step(stats);
-    dt_next_ = std::min(acoustic_step(stats), advection_step_);
-
-    report_.regularized_corrections = fallback_count_;
-    this->release_initial_particles();
-    this->report_particles_and_pairs(to_host<B>(offsets_),
-                                     double(pairs_) * (sizeof(Index) + sizeof(Vec<D, Real>) + sizeof(Real)) +
-                                         double(n) * (sizeof(PairIndex) + sizeof(Vec<D, Real>)));
-  }
-
-  void begin_step() override {
-    this->round_trips_before_ = round_trips();
-    Index n = particles_.size();
-    const double dt = this->step_dt_ = dt_next_;
+  // ---- the step (ulsph_recipe.cpp) -----------------------------------------
+  // The pair data of a rebuild are those of the half-step positions, at
+  // which the forces act and between the velocities of the two density
+  // half steps: the lag of pair directions behind a spinning body then
+  // cancels (docs/theory.md, "ULSPH").
+  void forces(double dt) override {
     const Real half_dt = Real(0.5 * dt);
-    results_.clear();
-    // The pair data of a rebuild are those of the half-step positions, at
-    // which the forces act and between the velocities of the two density
-    // half steps: the lag of pair directions behind a spinning body then
-    // cancels (docs/theory.md, "ULSPH").
     const bool refresh = !rebuild_due_ && scene_.solver.ulsph.refresh_pairs;
-    run("half_step", [&] {
-      if (refresh)  // with x and V of the step's start for the refresh below
-        parallel_for<B>(n, ulsph::DisplacementHalfStepPositionVolumeFunctor<D, Real>{velocity(), displacement(),
-                                                                                     half_dt, position_volume()});
+    run("half_step", [&] {  // u to the half step (eq. 14)
+      if (refresh)          // with x and V of the step's start for the refresh below
+        parallel_for<B>(particles_.size(), ulsph::DisplacementHalfStepPositionVolumeFunctor<D, Real>{
+                                               velocity(), displacement(), half_dt, position_volume()});
       else
-        parallel_for<B>(n, ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
+        parallel_for<B>(particles_.size(),
+                        ulsph::DisplacementHalfStepFunctor<D, Real>{velocity(), displacement(), half_dt});
     });
-    if (rebuild_due_ && this->ghosts_ && migration_travelled_ > migration_reach() &&
-        !distributed::migration_switched_off()) {
-      run("migrate", [&] { this->migrate_particles(distributed::halo_radius(scene_)); });
-      migration_travelled_ = 0;
-    }
+    this->migrate_if_due();
     if (rebuild_due_) run("neighbors", [&] { rebuild(false); });
-    n = particles_.size();  // a migration changes this rank's particles
     const PairList<D, Real> pairs = pair_list();
-    if (refresh)  // pair data, B and the density half step in one pass over the rows
-      run("half_step", [&] { refresh_half_step(half_dt); });
-    else
-      run("half_step", [&] {
-        parallel_for<B>(n, ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
-      });
+    run("half_step", [&] {  // rho to the half step (eq. 30)
+      if (refresh)          // pair data, B and the density half step in one pass over the rows
+        refresh_half_step(half_dt);
+      else
+        parallel_for<B>(particles_.size(),
+                        ulsph::HalfStepFunctor<D, Real>{pairs, velocity(), real(field::density), nullptr, half_dt});
+    });
     run("stress", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) stress(b, pairs, Real(dt));
     });
-    halo({field::pressure, field::shear_stress, field::velocity_gradient, field::plastic_scale, field::failed});
     run("force", [&] {
       for (size_t b = 0; b < scene_.bodies.size(); ++b) force(b, pairs, Real(dt));
-      parallel_for<B>(n, ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
+      parallel_for<B>(particles_.size(), ulsph::VelocityFunctor<D, Real>{acceleration(), velocity(), Real(dt)});
     });
-    if (contact_.enabled()) {
-      if (this->ghosts_ && distributed::halo_check_requested()) verify_contact_halo();
-      halo({field::velocity});  // the contact's partners across the cut
-      run("contact", [&] { contact_.apply(this->kinematics(), time_, dt, results_); });
-    }
   }
 
-  void end_step() override {
+  void advance(double dt) override {
     const Index n = particles_.size();
-    const double dt = this->step_dt_;
-    const Real half_dt = Real(0.5 * dt);
-    const PairList<D, Real> pairs = pair_list();
-    const Kinematics<D, Real> k = this->kinematics();
-    if (has_loads_) run("loads", [&] { conditions_.apply_loads(k, time_, dt, steps_ + 1, results_); });
-    run("boundary", [&] { conditions_.apply_boundary(k, time_, dt, steps_ + 1, results_); });
-    halo({field::velocity});
-    ResultSlot<StepStatistics<Real>> stats_slot;
-    std::vector<ResultSlot<BoundingBox<D, Real>>> box_slots;
-    run("advance", [&] {
-      ulsph::SecondHalfStepFunctor<D, Real> f{{pairs, velocity(), real(field::density), displacement(), half_dt},
-                                              statistics_functor(),
-                                              numerical_work(Real(dt))};
-      stats_slot = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
-                                   StepStatisticsCombine<Real>{});
+    box_slots_.clear();
+    run("advance", [&] {  // rho and u through the second half (eq. 32), the maxima
+      ulsph::SecondHalfStepFunctor<D, Real> f{
+          {pair_list(), velocity(), real(field::density), displacement(), Real(0.5 * dt)},
+          statistics_functor(),
+          numerical_work(Real(dt))};
+      stats_slot_ = results_.reduce(Index(0), n, f, StepStatistics<Real>{Real(0), Real(0), Real(0), Real(0), n},
+                                    StepStatisticsCombine<Real>{});
       // The boxes of the next search, should the next step rebuild.
       for (const BodyRange& r : ranges_)
-        box_slots.push_back(results_.reduce(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
-                                            BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{}));
+        box_slots_.push_back(results_.reduce(r.begin, r.end, BoundingBoxFunctor<D, Real>{reference(), displacement()},
+                                             BoundingBox<D, Real>::empty(), BoundingBoxCombine<D, Real>{}));
     });
-    halo({field::density});
-    run("time_step", [&] {
-      results_.fetch();
-      conditions_.collect(results_, k);
-      contact_.collect(results_);
-      StepStatistics<Real> stats = results_.get(stats_slot);
-      this->maxima_over_ranks(stats);  // distributed runs: the whole scene's
-      for (size_t b = 0; b < box_slots.size(); ++b) boxes_[b] = results_.get(box_slots[b]);
-      globalize_boxes();
-      time_ += dt;
-      ++steps_;
-      if (stats.first_bad < n) fail(stats.first_bad);
-      // Dual criteria (seed 002 eq. 28-29): acoustic steps until the advection
-      // step is covered, then a new advection step with a neighbour rebuild.
-      advection_elapsed_ += dt;
-      // The bound of eq. 28 itself, for speeds that grow within the advection
-      // step (a plate at rest when a projectile strikes it has dt_adv = inf
-      // with U_ref = 0): no particle moves more than C_adv h between searches.
-      advection_travelled_ += dt * std::sqrt(double(stats.max_speed2));
-      migration_travelled_ += dt * std::sqrt(double(stats.max_speed2));
-      const bool single = !scene_.solver.ulsph.dual_time_stepping;
-      rebuild_due_ = single || advection_elapsed_ >= advection_step_ * (1.0 - 1e-12) ||
-                     advection_travelled_ > advection_reach() * (1.0 + 1e-9);
-      if (rebuild_due_) {
-        advection_elapsed_ = 0;
-        advection_travelled_ = 0;
-        advection_step_ = advection_step(stats);
-      }
-      dt_next_ = acoustic_step(stats);
-      if (!single) dt_next_ = std::min(dt_next_, advection_step_ - advection_elapsed_);
-    });
-    this->clock_.collect(this->timers_);
-    this->timers_.add_round_trips(round_trips() - this->round_trips_before_);
+  }
+
+  // Dual criteria (seed 002 eq. 28-29): acoustic steps until the advection
+  // step is covered, then a new advection step with a neighbour rebuild.
+  void finish_step(double dt) override {
+    StepStatistics<Real> stats = results_.get(stats_slot_);
+    this->maxima_over_ranks(stats);  // distributed runs: the whole scene's
+    for (size_t b = 0; b < box_slots_.size(); ++b) boxes_[b] = results_.get(box_slots_[b]);
+    globalize_boxes();
+    if (stats.first_bad < particles_.size()) fail(stats.first_bad);
+    advection_elapsed_ += dt;
+    // The bound of eq. 28 itself, for speeds that grow within the advection
+    // step (a plate at rest when a projectile strikes it has dt_adv = inf
+    // with U_ref = 0): no particle moves more than C_adv h between searches.
+    advection_travelled_ += dt * std::sqrt(double(stats.max_speed2));
+    migration_travelled_ += dt * std::sqrt(double(stats.max_speed2));
+    const bool single = !scene_.solver.ulsph.dual_time_stepping;
+    rebuild_due_ = single || advection_elapsed_ >= advection_step_ * (1.0 - 1e-12) ||
+                   advection_travelled_ > advection_reach() * (1.0 + 1e-9);
+    if (rebuild_due_) {
+      advection_elapsed_ = 0;
+      advection_travelled_ = 0;
+      advection_step_ = advection_step(stats);
+    }
+    dt_next_ = acoustic_step(stats);
+    if (!single) dt_next_ = std::min(dt_next_, advection_step_ - advection_elapsed_);
   }
 
   EnergySample energies() override {
@@ -336,13 +203,7 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   }
   void update_stress_observables() override { update_observables(); }
 
-  Real* real(const char* name) { return particles_.template get<Real>(name); }
   Real* optional(const char* name) { return this->optional_real(name); }
-  Mat<D, Real>* mat(const char* name) { return particles_.template get<Mat<D, Real>>(name); }
-  Vec<D, Real>* velocity() { return particles_.template get<Vec<D, Real>>(field::velocity); }
-  Vec<D, Real>* acceleration() { return particles_.template get<Vec<D, Real>>(field::acceleration); }
-  Vec<D, Real>* displacement() { return particles_.template get<Vec<D, Real>>(field::displacement); }
-  const Vec<D, Real>* reference() { return particles_.template get<Vec<D, Real>>(field::reference_position); }
 
   PairList<D, Real> pair_list() const {
     return PairList<D, Real>{raw(offsets_), raw(neighbor_), raw(grad_), raw(stretch_), raw(gradient_sum_), nullptr};
@@ -407,25 +268,6 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     if (this->ghosts_ && distributed::halo_check_requested()) verify_halo();
   }
 
-  bool ghosts_supported() const override { return true; }
-  bool ghosts_are_current_neighbours() const override { return true; }
-
-  // Distributed runs: the ghosts' copies of every field after a pass whose
-  // pair sums their cut rows got wrong (docs/distributed.md).
-  // Each refresh holds what the passes until the next one read of a partner
-  // and a ghost's own row got wrong (its row is cut by the halo):
-  //   after the stress: p, tau, L, kappa (the force and GNOG read them of the
-  //     partners; the failure flag with them);
-  //   after the force, with contact: v (the contact's partners);
-  //   after the boundary conditions: v (the density step and L read it);
-  //   after the advance: rho (the search's V_j = m_j / rho_j, and p).
-  // Every other field a ghost holds is its own function of these (x = X + u,
-  // the pair data, B) or is read of no partner (a, the work sums). The
-  // single-process comparisons (tests/mpi) check that this is complete.
-  void halo(std::initializer_list<const char*> names) {
-    if (this->ghosts_) run("halo", [&] { this->refresh_ghosts(names); });
-  }
-
   // Distributed runs: the boxes of the whole bodies (every rank's cells are
   // the single-process run's).
   void globalize_boxes() {
@@ -451,6 +293,8 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   //   Contact searches its pairs at every step, not only at the searches:
   // its reach (kContactRateReach spacings) plus twice the travel until the
   // next search (at most the advection reach more) must stay within r too.
+  bool migration_due() override { return migration_travelled_ > migration_reach(); }
+  double migration_radius() override { return distributed::halo_radius(scene_); }
   double migration_reach() {
     double reach = std::numeric_limits<double>::infinity(), spacing = 0;
     const double r = distributed::halo_radius(scene_);
@@ -462,42 +306,19 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
     return reach;
   }
 
-  void after_migration() override {
-    for (size_t b = 0; b < search_.size(); ++b) search_[b].range = ranges_[b];
-    // Per particle, outside the fields (a restored run refreshes its kept
-    // pairs without a search first).
+  // Per particle, outside the fields (a restored run refreshes its kept
+  // pairs without a search first).
+  void migrated() override {
     gradient_sum_.resize(size_t(particles_.size()));
     fallback_.resize(size_t(particles_.size()));
-    if (scene_.contact.enabled) this->setup_contact_again(std::vector<unsigned char>(size_t(particles_.size()), 1));
   }
 
   // MFSD_VERIFY_HALO=1: after every search, the brute-force check that each
   // owned particle's partners are all held here (host/halo/halo_check.hpp).
-  // MFSD_VERIFY_HALO=1 with contact: at every step, every particle of any
-  // body within the contact's reach of an owned particle is held here (the
-  // contact searches its pairs at every step, with positions moved since the
-  // last search).
-  void verify_contact_halo() {
-    double spacing = 0;
-    for (const auto& b : scene_.bodies) spacing = std::max(spacing, b.spacing);
-    verify_halo(std::vector<double>(scene_.bodies.size(), kContactRateReach * spacing), true);
-  }
-
   void verify_halo() {
     std::vector<double> support;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) support.push_back(2.0 * props(b).h);
-    verify_halo(support, false);
-  }
-
-  void verify_halo(const std::vector<double>& support, bool across_bodies) {
-    // The search's positions, or (contact) those of this step: X + u.
-    std::vector<Vec<D, Real>> x = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position));
-    if (across_bodies) {
-      const auto X = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::reference_position));
-      const auto u = to_host<B>(particles_.template buffer<Vec<D, Real>>(field::displacement));
-      for (size_t i = 0; i < x.size(); ++i) x[i] = X[i] + u[i];
-    }
-    Base::verify_halo(x, support, across_bodies);
+    Base::verify_halo(to_host<B>(particles_.template buffer<Vec<D, Real>>(field::current_position)), support, false);
   }
 
   // x = X + u into current_position and V = m / rho into current_volume.
@@ -685,25 +506,19 @@ class UlsphSolver final : public ParticleSolver<B, D, Real> {
   // Finite and inside the bounds: the density was not (the pressure then is not either).
   [[noreturn]] void fail(Index i) { Base::fail(i, {"density", "is not finite or not positive"}); }
 
-  std::vector<BodySearch> search_;
   std::vector<BoundingBox<D, Real>> boxes_;  // per body, the current positions' box
-  CellIndex<B, D, Real> cells_;
-  DeviceVector<B, Index> count_;
-  DeviceVector<B, PairIndex> offsets_;
-  DeviceVector<B, Index> neighbor_;
   DeviceVector<B, Vec<D, Real>> grad_;
   DeviceVector<B, Real> stretch_;
   DeviceVector<B, Vec<D, Real>> gradient_sum_;
   DeviceVector<B, unsigned char> fallback_;
-  PairIndex pairs_ = 0;
   long fallback_count_ = 0;
-  bool has_loads_ = false;
-  bool rebuild_due_ = false;
-  std::vector<double> body_total_;  // particles of each body in the whole scene (distributed runs: all ranks')
   double advection_step_ = 0, advection_elapsed_ = 0;
   double advection_travelled_ = 0;  // sum dt |v|max since the last search
-  double migration_travelled_ = 0;  // distributed runs: sum dt |v|max since the last migration
-  std::vector<double> gravity_at_start_;
+  // The step's results between advance() and finish_step().
+  ResultSlot<StepStatistics<Real>> stats_slot_;
+  std::vector<ResultSlot<BoundingBox<D, Real>>> box_slots_;
 };
 
 }  // namespace mfsd
+
+#include "host/solver/ulsph/ulsph_setup.hpp"
