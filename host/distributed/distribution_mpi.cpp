@@ -441,8 +441,8 @@ class DistributedSolver final : public Solver {
                           e.momentum[1], e.momentum[2], e.hourglass_mean * double(owned_)};
     for (const BodyEnergy& b : e.bodies)
       v.insert(v.end(), {b.kinetic, b.strain, b.plastic, b.fracture, b.external_work, b.boundary_work, b.contact_work,
-                         b.gravity_work, b.damping, b.relaxation, b.crack_surface, b.active_work, b.momentum[0],
-                         b.momentum[1], b.momentum[2]});
+                         b.gravity_work, b.damping, b.relaxation, b.crack_surface, b.active_work, b.shear_mismatch,
+                         b.momentum[0], b.momentum[1], b.momentum[2]});
     sum(v.data(), int(v.size()));
     size_t k = 0;
     e.kinetic = v[k++], e.strain = v[k++];
@@ -452,7 +452,7 @@ class DistributedSolver final : public Solver {
     for (BodyEnergy& b : e.bodies) {
       for (double* x : {&b.kinetic, &b.strain, &b.plastic, &b.fracture, &b.external_work, &b.boundary_work,
                         &b.contact_work, &b.gravity_work, &b.damping, &b.relaxation, &b.crack_surface, &b.active_work,
-                        &b.momentum[0], &b.momentum[1], &b.momentum[2]})
+                        &b.shear_mismatch, &b.momentum[0], &b.momentum[1], &b.momentum[2]})
         *x = v[k++];
     }
     e.hourglass_max = reduce(e.hourglass_max, MPI_MAX);

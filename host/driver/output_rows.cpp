@@ -66,6 +66,11 @@ std::vector<std::string> energy_columns(const Scene& scene) {
     cols.push_back("active_work");
     for (auto& b : scene.bodies) cols.push_back(b.name + ".active_work");
   }
+  // solver.ulsph.energy_audit: the shear force's missing work (not in the balance), last.
+  if (has_ulsph_energy_audit(scene)) {
+    cols.push_back("shear_mismatch");
+    for (auto& b : scene.bodies) cols.push_back(b.name + ".shear_mismatch");
+  }
   return cols;
 }
 
@@ -114,6 +119,12 @@ std::vector<double> energy_row(double time, const EnergySample& e, int dimension
   if (e.with_active) {
     row.push_back(sum.active_work);
     for (auto& b : e.bodies) row.push_back(b.active_work);
+  }
+  if (e.with_audit) {
+    double total = 0;
+    for (auto& b : e.bodies) total += b.shear_mismatch;
+    row.push_back(total);
+    for (auto& b : e.bodies) row.push_back(b.shear_mismatch);
   }
   return row;
 }

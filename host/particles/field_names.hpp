@@ -50,9 +50,10 @@ inline constexpr const char* density = "density";                  // rho
 inline constexpr const char* current_volume = "current_volume";    // V = m / rho at the step's start (pair refresh)
 inline constexpr const char* dissipated_work = "dissipated_work";  // J taken by the Riemann dissipation and GNOG
 inline constexpr const char* numerical_acceleration = "numerical_acceleration";  // Riemann + GNOG part of a
-inline constexpr const char* plastic_work = "plastic_work";                      // J of plastic work (ULSPH J2)
-inline constexpr const char* pair_density = "pair_density";  // rho when the pair data (V_j = m_j/rho_j) were formed
-inline constexpr const char* pressure = "pressure";          // p = K (rho/rho0 - 1)
+inline constexpr const char* shear_mismatch = "shear_mismatch";  // ULSPH energy audit: sum V tau : (L - L~) dt
+inline constexpr const char* plastic_work = "plastic_work";      // J of plastic work (ULSPH J2)
+inline constexpr const char* pair_density = "pair_density";      // rho when the pair data (V_j = m_j/rho_j) were formed
+inline constexpr const char* pressure = "pressure";              // p = K (rho/rho0 - 1)
 inline constexpr const char* velocity_gradient = "velocity_gradient";            // L_ab = dv_a/dx_b
 inline constexpr const char* hourglass_acceleration = "hourglass_acceleration";  // GNOG a_h, accumulated
 inline constexpr const char* current_position = "current_position";              // x = X + u for the search

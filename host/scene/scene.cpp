@@ -57,6 +57,13 @@ bool has_load_condition(const Scene& scene) {
   return false;
 }
 
+bool has_ulsph_energy_audit(const Scene& scene) {
+  if (!scene.solver.ulsph.energy_audit) return false;
+  for (const auto& b : scene.bodies)
+    if (b.method == Method::ulsph) return true;
+  return false;
+}
+
 bool has_holzapfel_ogden_body(const Scene& scene) {
   for (const auto& b : scene.bodies)
     if (b.material.model == MaterialModel::holzapfel_ogden) return true;

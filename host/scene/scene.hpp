@@ -266,6 +266,7 @@ struct UlsphSpec {
   bool remove_plastic_rate = false;  // J2: radial return | the seed's rate without its plastic part first
   double xi = -1;                    // GNOG coefficient; < 0: per body 4 elastic, 0.2 plastic, 2 with gnog_amc
   double riemann_limiter = 0;        // eta of the low-dissipation limiter (seed 002 ref. [38]); 0: none
+  bool energy_audit = false;         // energies.csv gets the shear force's missing work (shear_mismatch)
   // solver.ulsph.hourglass, or solver.hourglass when ulsph is the scene's method.
   HourglassControl hourglass = HourglassControl::gnog;
 };
@@ -365,6 +366,8 @@ bool has_fracture_body(const Scene& scene);
 bool has_holzapfel_ogden_body(const Scene& scene);
 // Some Holzapfel-Ogden body has an active stress (energies.csv gets active_work columns).
 bool has_active_stress(const Scene& scene);
+// solver.ulsph.energy_audit with a ULSPH body (energies.csv gets shear_mismatch columns).
+bool has_ulsph_energy_audit(const Scene& scene);
 
 // The crack followed by the crack-tip output (crack_<body>.csv) of a
 // fracturing body: from `origin` (the first notch's tip in 2-D, the centre of

@@ -108,6 +108,7 @@ SolverSpec read_solver(JsonNode s, int dim) {
     spec.ulsph.remove_plastic_rate = u.choice("j2_return", {"radial", "seed"}, "radial") == "seed";
     if (u.has("xi")) spec.ulsph.xi = u.number("xi", Range::positive());
     spec.ulsph.riemann_limiter = u.number("riemann_limiter", 0.0, Range::non_negative());
+    spec.ulsph.energy_audit = u.boolean("energy_audit", false);
     u.finish();
   }
   if (spec.method == Method::ulsph && !hourglass_in_ulsph)

@@ -33,6 +33,11 @@ struct BodyEnergy {
   double relaxation = 0;     // kinetic energy removed by solver.relaxation
   double crack_surface = 0;  // Gc int (1-s)^2/(4 eps0) + eps0 |grad s|^2 dV0 (fracturing bodies)
   double active_work = 0;    // work of the active stress on the body (Holzapfel-Ogden muscle)
+  // ULSPH with solver.ulsph.energy_audit: sum V tau : (L - L~) dt, the work the
+  // stress receives through the corrected velocity gradient L that the shear
+  // force (with the uncorrected L~) does not take from the motion; not in the
+  // balance, which it moves by this much (docs/theory.md, ULSPH "Energies").
+  double shear_mismatch = 0;
   Point3 momentum{0, 0, 0};  // kg m/s (2-D: per metre of depth)
   // Constant in time for a conservative run:
   // E_k + E_s + dissipation - W_ext - W_bc - W_contact - W_gravity - W_active.
@@ -48,6 +53,7 @@ struct EnergySample {
   double hourglass_max = 0, hourglass_mean = 0;
   bool with_fracture = false;  // some body fractures: crack_surface columns are written
   bool with_active = false;    // some body has an active stress: active_work columns are written
+  bool with_audit = false;     // solver.ulsph.energy_audit: shear_mismatch columns are written
   std::vector<BodyEnergy> bodies;
 };
 

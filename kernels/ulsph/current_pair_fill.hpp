@@ -95,8 +95,7 @@ struct PairRefreshFunctor {
   // of the row just formed (velocity_gradient.hpp), in the same loop, and
   // with a velocity field also sum_j v_j . grad_ij (continuity.hpp) in
   // *velocity_sum.
-  MFSD_HD Mat<D, Real> refresh(Index i, const Vec<D, Real>* velocity = nullptr,
-                               Real* velocity_sum = nullptr) const {
+  MFSD_HD Mat<D, Real> refresh(Index i, const Vec<D, Real>* velocity = nullptr, Real* velocity_sum = nullptr) const {
     const Vec<D, Real> xi = position[i];
     Vec<D, Real> sum = Vec<D, Real>::zero();
     Mat<D, Real> A = Mat<D, Real>::zero();

@@ -16,6 +16,7 @@ struct EnergySums {
   double gravity;
   double dissipated;
   double plastic;
+  double shear_mismatch;  // solver.ulsph.energy_audit (kernels/ulsph/step.hpp), else 0
 };
 
 struct EnergySumsPlus {
@@ -25,7 +26,8 @@ struct EnergySumsPlus {
                       {a.momentum[0] + b.momentum[0], a.momentum[1] + b.momentum[1], a.momentum[2] + b.momentum[2]},
                       a.gravity + b.gravity,
                       a.dissipated + b.dissipated,
-                      a.plastic + b.plastic};
+                      a.plastic + b.plastic,
+                      a.shear_mismatch + b.shear_mismatch};
   }
 };
 
@@ -41,6 +43,7 @@ struct EnergyFunctor {
   const Real* plastic_work;  // null without J2 bodies
   double bulk_modulus, shear_modulus;
   Vec<D, Real> gravity;
+  const Real* shear_mismatch = nullptr;  // solver.ulsph.energy_audit, else null
 
   MFSD_HD EnergySums operator()(Index i) const {
     const double m = double(mass[i]);
@@ -52,7 +55,8 @@ struct EnergyFunctor {
                  {0.0, 0.0, 0.0},
                  0.0,
                  double(dissipated_work[i]),
-                 plastic_work ? double(plastic_work[i]) : 0.0};
+                 plastic_work ? double(plastic_work[i]) : 0.0,
+                 shear_mismatch ? double(shear_mismatch[i]) : 0.0};
     for (int a = 0; a < D; ++a) {
       const double v = double(velocity[i].v[a]);
       s.kinetic += 0.5 * m * v * v;

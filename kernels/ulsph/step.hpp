@@ -104,19 +104,24 @@ struct StressFunctor {
   Failure failure;
   HypoelasticJ2<Real> model;
   Real dt;
+  // solver.ulsph.energy_audit: += V tau : (L - L~) dt, the stress power the
+  // shear force (eq. 18, with the uncorrected gradient) does not do; else null.
+  Real* shear_mismatch = nullptr;
 
   MFSD_HD void operator()(Index i) const {
-    pressure[i] = failure(i, eos.pressure(density[i]));                                  // seed 002 section 2.1, 5.9
-    const Mat<D, Real> L = ulsph::velocity_gradient(pairs, velocity, correction[i], i);  // seed 002 eq. 20
+    pressure[i] = failure(i, eos.pressure(density[i]));  // seed 002 section 2.1, 5.9
+    const Mat<D, Real> L_uncorrected = ulsph::uncorrected_velocity_gradient(pairs, velocity, i);
+    const Mat<D, Real> L = mul_transposed(L_uncorrected, correction[i]);  // seed 002 eq. 20: L~ B_i^T
     velocity_gradient[i] = L;
     const ShearStressUpdate<D, Real> r =
         update_shear_stress(shear_stress[i], L, hardening ? hardening[i] : Real(0), model, dt);
     shear_stress[i] = r.shear_stress;
+    if (shear_mismatch) shear_mismatch[i] += dt * mass[i] / density[i] * ddot(r.shear_stress, L - L_uncorrected);
     if (hardening) {
       // tau : d eps_p = |tau| dgamma = sqrt(2/3) R dgamma = (sigma_y + H a) da per unit volume
       if (plastic_work)
-        plastic_work[i] += mass[i] / density[i] *
-                           (model.yield_stress + model.hardening_modulus * r.hardening) * (r.hardening - hardening[i]);
+        plastic_work[i] += mass[i] / density[i] * (model.yield_stress + model.hardening_modulus * r.hardening) *
+                           (r.hardening - hardening[i]);
       hardening[i] = r.hardening;
     }
     if (kappa) kappa[i] = r.kappa;
@@ -139,7 +144,7 @@ struct ForceFunctor {
   NumericalWork<D, Real> work;  // writes a_num (its numerical_acceleration is written here)
   Real impedance;               // Z = rho0 c0
   Real limiter;                 // eta / c0 of the Riemann dissipation's limiter; 0: none (pressure_force.hpp)
-  Real xi;                // GNOG coefficient of the body
+  Real xi;                      // GNOG coefficient of the body
   Real shear_modulus;
   Real dt;
   Vec<D, Real> gravity;
@@ -166,21 +171,21 @@ struct ForceFunctor {
       if constexpr (gnog) prefetch(&velocity_gradient[ahead]);
       const Vec<D, Real> g = pairs.grad[k];
       const Vec<D, Real> v_j = velocity[j];
-      sum_p += g * (-(p_i + pressure[j]));                                      // seed 002 eq. 15: pressure
+      sum_p += g * (-(p_i + pressure[j]));                                        // seed 002 eq. 15: pressure
       dissipation += riemann_dissipation_term(g, v_i - v_j, impedance, limiter);  // eq. 15-17: Riemann
-      sum_s += shear_stress[j] * g;                                             // eq. 18: tau_j grad_ij
+      sum_s += shear_stress[j] * g;                                               // eq. 18: tau_j grad_ij
       if constexpr (gnog)
         sum_h += gnog_pair_term<D, Real, Variant>(v_i, v_j, L_i, velocity_gradient[j], g, pairs.stretch[k], kappa_i,
                                                   kappa ? kappa[j] : Real(1));  // eq. 29, 35
     }
-    const Vec<D, Real> a_d = dissipation / rho;  // the Riemann dissipation's part of a
-    Vec<D, Real> a = (sum_p + dissipation) / rho;    // seed 002 eq. 15: 1/rho_i
-    a += sum_s / rho;                                // seed 002 eq. 18
+    const Vec<D, Real> a_d = dissipation / rho;    // the Riemann dissipation's part of a
+    Vec<D, Real> a = (sum_p + dissipation) / rho;  // seed 002 eq. 15: 1/rho_i
+    a += sum_s / rho;                              // seed 002 eq. 18
     Vec<D, Real> a_numerical = a_d;
     if constexpr (gnog) {
       Vec<D, Real> a_h = hourglass_acceleration[i];
       if constexpr (std::is_same<Variant, GnogAngularMomentumConserving>::value)
-        a_h = rotate_with_spin(a_h, L_i, dt);  // formulations.md 3: a_h turns with the spin
+        a_h = rotate_with_spin(a_h, L_i, dt);                      // formulations.md 3: a_h turns with the spin
       a_h += sum_h * (Real(0.5) * xi * shear_modulus / rho) * dt;  // seed 002 eq. 29: G / rho_i, accumulated
       hourglass_acceleration[i] = a_h;
       a += a_h;

@@ -46,10 +46,11 @@ MFSD_HD inline bool correction_matrix(const PairList<D, Real>& pairs, Index i, R
   return false;
 }
 
-// L_i = -sum_j (v_i - v_j) (x) (B_i grad_ij), L_ab = dv_a/dx_b (seed 002 eq. 20).
+// The uncorrected L~_i = -sum_j (v_i - v_j) (x) grad_ij: the gradient whose
+// stress power V tau : L~ the shear force of eq. 18 does as work.
 template <int D, class Real>
-MFSD_HD inline Mat<D, Real> velocity_gradient(const PairList<D, Real>& pairs, const Vec<D, Real>* velocity,
-                                              const Mat<D, Real>& B, Index i) {
+MFSD_HD inline Mat<D, Real> uncorrected_velocity_gradient(const PairList<D, Real>& pairs, const Vec<D, Real>* velocity,
+                                                          Index i) {
   Mat<D, Real> sum = Mat<D, Real>::zero();  // sum_j v_j (x) grad_ij
   for (PairIndex k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k) {
     prefetch(&velocity[pairs.neighbor[k + kPairPrefetchDistance]]);
@@ -61,7 +62,14 @@ MFSD_HD inline Mat<D, Real> velocity_gradient(const PairList<D, Real>& pairs, co
   const Vec<D, Real> vi = velocity[i], G = pairs.gradient_sum[i];
   for (int a = 0; a < D; ++a)
     for (int b = 0; b < D; ++b) sum.m[a][b] -= vi.v[a] * G.v[b];  // now -sum_j (v_i - v_j) (x) grad_ij
-  return mul_transposed(sum, B);                                  // seed 002 eq. 20: (.) B_i^T
+  return sum;
+}
+
+// L_i = -sum_j (v_i - v_j) (x) (B_i grad_ij) = L~_i B_i^T, L_ab = dv_a/dx_b (seed 002 eq. 20).
+template <int D, class Real>
+MFSD_HD inline Mat<D, Real> velocity_gradient(const PairList<D, Real>& pairs, const Vec<D, Real>* velocity,
+                                              const Mat<D, Real>& B, Index i) {
+  return mul_transposed(uncorrected_velocity_gradient(pairs, velocity, i), B);  // seed 002 eq. 20: (.) B_i^T
 }
 
 // correction[i] = B_i; fallback[i] = 1 where B_i = I was used (may be null).

@@ -177,6 +177,13 @@ TEST_F(Cli, CheckPrintsTheStepRecipe) {
       << mixed.output;
 }
 
+// The energy audit measures the ULSPH shear force: in a scene without a ULSPH
+// body it is refused with the rest of solver.ulsph.
+TEST_F(Cli, EnergyAuditNeedsAUlsphBody) {
+  expect_input_error("check " + scene() + " --set solver.ulsph.energy_audit=true",
+                     "/solver/ulsph: got ULSPH settings in a scene without ULSPH bodies");
+}
+
 TEST_F(Cli, MalformedJsonNamesLineAndColumn) {
   expect_input_error("run " + scene("\"dimension\": 2,", "\"dimension\": 2,,") + " -o " + out(),
                      "scene.json:3:18: invalid JSON");

@@ -144,6 +144,7 @@ class CoupledSolver : public Solver {
       particles += n;
       e.with_fracture = e.with_fracture || s.with_fracture;
       e.with_active = e.with_active || s.with_active;
+      e.with_audit = e.with_audit || s.with_audit;
       for (size_t b = 0; b < s.bodies.size(); ++b) e.bodies[parts_[q].scene_body[b]] = s.bodies[b];
     }
     e.hourglass_mean = particles ? hourglass_sum / double(particles) : 0;

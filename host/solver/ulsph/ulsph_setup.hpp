@@ -33,8 +33,9 @@ void UlsphSolver<B, D, Real>::initialize() {
   particles_.template add<Real>(field::jacobian);
   if (scene_.solver.hourglass != HourglassControl::none)
     particles_.template add<Vec<D, Real>>(field::hourglass_acceleration);
-  particles_.template add<Real>(field::dissipated_work);                 // zero
-  particles_.template add<Vec<D, Real>>(field::numerical_acceleration);  // a_num of the step
+  if (scene_.solver.ulsph.energy_audit) particles_.template add<Real>(field::shear_mismatch);  // zero
+  particles_.template add<Real>(field::dissipated_work);                                       // zero
+  particles_.template add<Vec<D, Real>>(field::numerical_acceleration);                        // a_num of the step
   if (has_plastic_body(scene_)) {
     particles_.template add<Real>(field::plastic_work);    // zero
     particles_.template add<Real>(field::plastic_strain);  // a, the accumulated plastic strain

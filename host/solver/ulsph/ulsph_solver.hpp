@@ -135,6 +135,7 @@ class UlsphSolver final : public CurrentConfigurationSolver<B, D, Real> {
 
   EnergySample energies() override {
     EnergySample e;
+    e.with_audit = scene_.solver.ulsph.energy_audit;
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {
       const ulsph::EnergySums s = energy(b);
       e.kinetic += s.kinetic;
@@ -146,6 +147,7 @@ class UlsphSolver final : public CurrentConfigurationSolver<B, D, Real> {
       be.gravity_work = s.gravity - gravity_at_start_[b];
       be.plastic = s.plastic;
       be.damping = s.dissipated;
+      be.shear_mismatch = s.shear_mismatch;
       this->add_shared_work(b, be);
       for (int a = 0; a < 3; ++a) be.momentum[a] = s.momentum[a];
       e.bodies.push_back(be);
@@ -401,7 +403,8 @@ class UlsphSolver final : public CurrentConfigurationSolver<B, D, Real> {
                                                          eos,
                                                          failure,
                                                          shear_law(b),
-                                                         dt};
+                                                         dt,
+                                                         optional(field::shear_mismatch)};
       parallel_for<B>(ranges_[b].begin, ranges_[b].end, f);
     };
     if (m.failure_pressure > 0)
@@ -456,11 +459,12 @@ class UlsphSolver final : public CurrentConfigurationSolver<B, D, Real> {
     using Energy = ulsph::EnergyFunctor<D, Real>;
     return transform_reduce<B>(
         ranges_[b].begin, ranges_[b].end,
-        OwnedOnly<Energy>{Energy{velocity(), displacement(), real(field::mass), real(field::density),
-                                 real(field::pressure), mat(field::shear_stress), real(field::dissipated_work),
-                                 optional(field::plastic_work), props(b).K, props(b).G, g},
-                          this->ghost_flags()},
-        ulsph::EnergySums{0, 0, {0, 0, 0}, 0, 0, 0}, ulsph::EnergySumsPlus{});
+        OwnedOnly<Energy>{
+            Energy{velocity(), displacement(), real(field::mass), real(field::density), real(field::pressure),
+                   mat(field::shear_stress), real(field::dissipated_work), optional(field::plastic_work), props(b).K,
+                   props(b).G, g, optional(field::shear_mismatch)},
+            this->ghost_flags()},
+        ulsph::EnergySums{0, 0, {0, 0, 0}, 0, 0, 0, 0}, ulsph::EnergySumsPlus{});
   }
 
   ulsph::NumericalWork<D, Real> numerical_work(Real dt) {
