@@ -136,7 +136,7 @@ struct HolzapfelOgden {
   }
 
   // Before a step at time t: T_a = k V_m min(t / ramp_time, 1).
-  void set_time(double t) {
+  MFSD_HD void set_time(double t) {
     if (ramp_time >= 0) activation = Real(ramp_time > 0 ? (t / ramp_time < 1.0 ? t / ramp_time : 1.0) : 1.0);
   }
 };
